@@ -1,0 +1,212 @@
+//! Checking a scene's expectations against the samples of a run, online
+//! (constant memory, whatever the run's length).
+
+use crate::scene::{Expect, JointName};
+use crate::sim::Sample;
+
+/// The verdict on one expectation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Verdict {
+    /// What was expected, in words.
+    pub what: String,
+    /// What was measured, in words.
+    pub measured: String,
+    /// The measured number (share, degrees, seconds...).
+    pub value: f64,
+    /// Whether it holds.
+    pub pass: bool,
+}
+
+#[derive(Clone, Debug, Default)]
+struct Acc {
+    n: u64,
+    hits: u64,
+    max: f64,
+    first: Option<f64>,
+    bad: bool,
+}
+
+/// Accumulates samples for every expectation of a scene.
+pub struct Checker {
+    expects: Vec<Expect>,
+    acc: Vec<Acc>,
+    duration: f64,
+}
+
+fn angle(s: &Sample, j: JointName) -> f64 {
+    match j {
+        JointName::NeckYaw => s.neck_actual.yaw,
+        JointName::NeckPitch => s.neck_actual.pitch,
+        JointName::NeckRoll => s.neck_actual.roll,
+        JointName::LeftEyeYaw => s.eye_actual[0].x,
+        JointName::LeftEyePitch => s.eye_actual[0].y,
+        JointName::RightEyeYaw => s.eye_actual[1].x,
+        JointName::RightEyePitch => s.eye_actual[1].y,
+    }
+}
+
+fn inside(t: f64, from: f64, to: f64) -> bool {
+    // Samples are stamped at the end of their tick; half-open on the left.
+    t > from - 1e-9 && t <= to + 1e-9
+}
+
+impl Checker {
+    /// A checker for these expectations over a run of `duration` seconds.
+    pub fn new(expects: &[Expect], duration: f64) -> Self {
+        Checker {
+            expects: expects.to_vec(),
+            acc: vec![Acc::default(); expects.len()],
+            duration,
+        }
+    }
+
+    /// Feed one sample.
+    pub fn push(&mut self, s: &Sample) {
+        for (e, a) in self.expects.iter().zip(&mut self.acc) {
+            match e {
+                Expect::GazeShare {
+                    target, from, to, ..
+                }
+                | Expect::GazeShareAtMost {
+                    target, from, to, ..
+                } => {
+                    if inside(s.t, *from, *to) {
+                        a.n += 1;
+                        a.hits += (s.gaze_target == *target) as u64;
+                    }
+                }
+                Expect::GazeReaches { target, from, to } => {
+                    if inside(s.t, *from, *to) && a.first.is_none() && s.gaze_target == *target {
+                        a.first = Some(s.t);
+                    }
+                }
+                Expect::AngleBelow {
+                    joint, from, to, ..
+                } => {
+                    if inside(s.t, from.unwrap_or(0.0), to.unwrap_or(self.duration)) {
+                        let v = angle(s, *joint).abs().to_degrees();
+                        a.n += 1;
+                        a.max = if v.is_nan() { f64::NAN } else { a.max.max(v) };
+                    }
+                }
+                Expect::LineOfSight { from, to, .. } => {
+                    if inside(s.t, *from, *to) {
+                        let v = s.los_error[0].max(s.los_error[1]).to_degrees();
+                        a.n += 1;
+                        a.max = if v.is_nan() { f64::NAN } else { a.max.max(v) };
+                    }
+                }
+                Expect::ActionShare {
+                    action, from, to, ..
+                } => {
+                    if inside(s.t, *from, *to) {
+                        a.n += 1;
+                        a.hits += (s.action == *action) as u64;
+                    }
+                }
+                Expect::Finite => {
+                    a.n += 1;
+                    a.bad |= !s.finite
+                        || !s.gaze_point.is_finite()
+                        || !s.eye_actual[0].is_finite()
+                        || !s.eye_actual[1].is_finite();
+                }
+            }
+        }
+    }
+
+    /// The verdicts.
+    pub fn verdicts(&self) -> Vec<Verdict> {
+        self.expects
+            .iter()
+            .zip(&self.acc)
+            .map(|(e, a)| judge(e, a, self.duration))
+            .collect()
+    }
+}
+
+fn share(a: &Acc) -> f64 {
+    if a.n == 0 { 0.0 } else { a.hits as f64 / a.n as f64 }
+}
+
+fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
+    match e {
+        Expect::GazeShare {
+            target,
+            from,
+            to,
+            at_least,
+        } => {
+            let v = share(a);
+            Verdict {
+                what: format!("gaze on `{target}` >= {:.0}% of [{from}, {to}] s", at_least * 100.0),
+                measured: format!("{:.1}%", v * 100.0),
+                value: v,
+                pass: a.n > 0 && v >= *at_least,
+            }
+        }
+        Expect::GazeShareAtMost {
+            target,
+            from,
+            to,
+            at_most,
+        } => {
+            let v = share(a);
+            Verdict {
+                what: format!("gaze on `{target}` <= {:.0}% of [{from}, {to}] s", at_most * 100.0),
+                measured: format!("{:.1}%", v * 100.0),
+                value: v,
+                pass: a.n > 0 && v <= *at_most,
+            }
+        }
+        Expect::GazeReaches { target, from, to } => Verdict {
+            what: format!("gaze reaches `{target}` within [{from}, {to}] s"),
+            measured: a
+                .first
+                .map_or("never".into(), |t| format!("at {t:.3} s ({:.0} ms after {from})", (t - from) * 1e3)),
+            value: a.first.map_or(f64::INFINITY, |t| t - from),
+            pass: a.first.is_some(),
+        },
+        Expect::AngleBelow {
+            joint,
+            max_deg,
+            from,
+            to,
+        } => Verdict {
+            what: format!(
+                "|{joint:?}| < {max_deg} deg over [{}, {}] s",
+                from.unwrap_or(0.0),
+                to.unwrap_or(duration)
+            ),
+            measured: format!("max {:.2} deg", a.max),
+            value: a.max,
+            pass: a.n > 0 && a.max < *max_deg,
+        },
+        Expect::LineOfSight { max_deg, from, to } => Verdict {
+            what: format!("line-of-sight error < {max_deg} deg over [{from}, {to}] s"),
+            measured: format!("max {:.3} deg", a.max),
+            value: a.max,
+            pass: a.n > 0 && a.max < *max_deg,
+        },
+        Expect::ActionShare {
+            action,
+            from,
+            to,
+            at_least,
+        } => {
+            let v = share(a);
+            Verdict {
+                what: format!("action {action:?} >= {:.0}% of [{from}, {to}] s", at_least * 100.0),
+                measured: format!("{:.1}%", v * 100.0),
+                value: v,
+                pass: a.n > 0 && v >= *at_least,
+            }
+        }
+        Expect::Finite => Verdict {
+            what: "state finite throughout (no NaN)".into(),
+            measured: if a.bad { "non-finite state".into() } else { format!("{} ticks finite", a.n) },
+            value: if a.bad { 1.0 } else { 0.0 },
+            pass: !a.bad && a.n > 0,
+        },
+    }
+}

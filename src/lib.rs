@@ -1,0 +1,29 @@
+//! # shisen (視線, "line of sight")
+//!
+//! A physically simulated virtual human (VH) that boxes with you and whose
+//! eyes, head and face react the way a person's do.
+//!
+//! The modules follow the pipeline of one control tick (gaze.md 1):
+//! [`world`] (rapier physics built from the static [`body`] plan) ->
+//! [`vision`] (visible bodies, saliency M1) -> [`behaviour`] (guard /
+//! attack / idle) -> [`attention`] (arbitration) -> [`oculomotor`]
+//! (saccades M2-M6, pursuit/vergence/VOR M7, head M8-M9) -> [`control`]
+//! (PD joints). [`sim`] runs the tick; [`scene`] reads scene files;
+//! [`trace`] and [`expect`] record and judge headless runs.
+
+pub mod attention;
+pub mod behaviour;
+pub mod body;
+pub mod check;
+pub mod control;
+pub mod expect;
+pub mod headless;
+pub mod math;
+pub mod metrics;
+pub mod oculomotor;
+pub mod scene;
+pub mod script;
+pub mod sim;
+pub mod trace;
+pub mod vision;
+pub mod world;

@@ -1,0 +1,266 @@
+//! Oculomotor control (gaze.md sections 7-10): from a gaze point to eye and
+//! neck joint targets.
+//!
+//! The laws live in the submodules, one place each: [`saccade`] (M2-M6),
+//! [`pursuit`] (M7: pursuit, vergence, VOR), [`head`] (start rule, M8, M9),
+//! [`takagi`] (T1) and [`fixation`] (microsaccades). This file composes
+//! them into one controller:
+//!
+//! - **eyes**: while the retinal error stays small the binocular model (M7)
+//!   runs; a new target, or an error above the start threshold (5 deg),
+//!   starts a saccade planned from the current command to each eye's goal
+//!   (hysteresis of gaze.md 8); when it ends, M7 resumes from where the
+//!   saccade left the eyes;
+//! - **head**: the start rule (beyond 30 deg; 20 ms after eye onset, or at
+//!   once for top-down targets) plans a minimum-jerk move (M9) to the
+//!   (M8) amplitude, or a Takagi trajectory when a scene asks for one; the
+//!   eyes counter-rotate through M7's VOR term, so the gaze stays on target.
+//!
+//! Conventions: `f64`, radians, seconds; a 2-D angle is
+//! `DVec2 { x: yaw, y: pitch }` with yaw positive to the left and pitch
+//! positive up (see [`crate::math::dir_from_yaw_pitch`]). Static parameters
+//! (`*Params`) are kept apart from evolving state.
+
+pub mod head;
+pub mod pursuit;
+pub mod saccade;
+
+use glam::{DQuat, DVec2, DVec3, Quat, Vec3};
+use serde::Deserialize;
+
+use crate::control::JointTarget;
+use crate::math::yaw_pitch_of;
+use crate::world::JointAngles;
+
+use head::{HeadMove, HeadParams};
+use pursuit::{BinocularParams, BinocularState, EyeInput, head_rate_from_angular_velocity};
+use saccade::{Saccade, SaccadeParams};
+
+/// All oculomotor parameters (scene `vh.oculomotor`).
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct OculomotorParams {
+    /// Saccade law and trigger thresholds.
+    pub saccade: SaccadeParams,
+    /// Binocular pursuit / vergence / VOR model.
+    pub pursuit: BinocularParams,
+    /// Head movement law.
+    pub head: HeadParams,
+}
+
+/// What the controller needs to know this tick.
+#[derive(Clone, Debug)]
+pub struct GazeInput {
+    /// Gaze point, world.
+    pub point: DVec3,
+    /// Identity of the gaze target (changes when attention switches).
+    pub target_id: u64,
+    /// Its attention amount A (M8).
+    pub amount: f64,
+    /// Chosen top-down (or by override): the head may lead.
+    pub top_down: bool,
+    /// Head centre, world.
+    pub head_pos: DVec3,
+    /// Head orientation, world.
+    pub head_rot: DQuat,
+    /// Head angular velocity, world (the vestibular signal).
+    pub head_angvel: DVec3,
+    /// Torso orientation, world (the neck's parent).
+    pub torso_rot: DQuat,
+    /// Eye centres, world (left, right).
+    pub eye_pos: [DVec3; 2],
+    /// Measured eye angles (left, right).
+    pub eye_angles: [DVec2; 2],
+    /// Measured neck angles.
+    pub neck_angles: JointAngles,
+    /// Whether each eye sees the target (false: shut or occluded).
+    pub visible: [bool; 2],
+}
+
+/// A 2-DOF (yaw, pitch) command with its rates and accelerations.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AxisCommand {
+    /// (yaw, pitch), rad.
+    pub angles: DVec2,
+    /// Rates, rad/s.
+    pub rates: DVec2,
+    /// Accelerations, rad/s^2.
+    pub accel: DVec2,
+}
+
+impl AxisCommand {
+    /// The joint target for this command (roll zero): rotation
+    /// `Ry(yaw) Rx(-pitch)` and the matching angular velocity and
+    /// acceleration in the parent frame (yaw about +Y, pitch about the
+    /// yawed -X axis; the velocity-product term of the acceleration is
+    /// neglected).
+    pub fn joint_target(&self) -> JointTarget {
+        let q = JointAngles {
+            yaw: self.angles.x,
+            pitch: self.angles.y,
+            roll: 0.0,
+        }
+        .to_quat();
+        let pitch_axis = Quat::from_rotation_y(self.angles.x as f32) * Vec3::NEG_X;
+        let w = |v: DVec2| Vec3::Y * v.x as f32 + pitch_axis * v.y as f32;
+        JointTarget {
+            rotation: q,
+            velocity: w(self.rates),
+            acceleration: w(self.accel),
+        }
+    }
+}
+
+/// The controller's output.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct GazeOutput {
+    /// Eye commands (left, right), relative to the head.
+    pub eyes: [AxisCommand; 2],
+    /// Neck command, relative to the torso.
+    pub neck: AxisCommand,
+}
+
+#[derive(Clone, Debug)]
+enum EyeMode {
+    Pursuit,
+    Saccade { plans: [Saccade; 2], t0: f64 },
+}
+
+/// The controller's evolving state.
+#[derive(Clone, Debug)]
+pub struct Oculomotor {
+    mode: EyeMode,
+    pursuit: BinocularState,
+    head: Option<(HeadMove, f64)>,
+    last_target: Option<u64>,
+    eye_onset: f64,
+    prev_goal: Option<[DVec2; 2]>,
+    out: GazeOutput,
+    /// Saccades started so far.
+    pub saccades: u32,
+    /// Head movements started so far.
+    pub head_moves: u32,
+}
+
+impl Oculomotor {
+    /// Eyes and head straight ahead.
+    pub fn new(_p: &OculomotorParams) -> Self {
+        Oculomotor {
+            mode: EyeMode::Pursuit,
+            pursuit: BinocularState::new(DVec2::ZERO, DVec2::ZERO),
+            head: None,
+            last_target: None,
+            eye_onset: f64::NEG_INFINITY,
+            prev_goal: None,
+            out: GazeOutput::default(),
+            saccades: 0,
+            head_moves: 0,
+        }
+    }
+
+    /// True while a saccade is being executed.
+    pub fn in_saccade(&self) -> bool {
+        matches!(self.mode, EyeMode::Saccade { .. })
+    }
+
+    /// Advance one tick.
+    pub fn step(
+        &mut self,
+        p: &OculomotorParams,
+        input: &GazeInput,
+        t: f64,
+        dt: f64,
+    ) -> GazeOutput {
+        let head_inv = input.head_rot.inverse();
+        let range = DVec2::new(p.pursuit.yaw_range, p.pursuit.pitch_range);
+        // Each eye's goal: the gaze point's direction from that eye, head frame.
+        let goal = input.eye_pos.map(|c| {
+            let (y, pt) = yaw_pitch_of(head_inv * (input.point - c));
+            DVec2::new(y, pt).clamp(-range, range)
+        });
+        let new_target = self.last_target != Some(input.target_id);
+        self.last_target = Some(input.target_id);
+        let target_rate = match self.prev_goal {
+            Some(prev) if !new_target => [(goal[0] - prev[0]) / dt, (goal[1] - prev[1]) / dt],
+            _ => [DVec2::ZERO; 2],
+        };
+        self.prev_goal = Some(goal);
+
+        let prev = self.out;
+        let mut eyes = prev.eyes;
+        if let EyeMode::Pursuit = self.mode {
+            let (l, r) = self.pursuit.angles();
+            let err = [goal[0] - l, goal[1] - r];
+            let max_err = err[0].length().max(err[1].length());
+            let jump = new_target && max_err > p.saccade.end_threshold * 5.0;
+            if jump || p.saccade.should_start(max_err) {
+                let plans = [0, 1].map(|k| Saccade::plan(&p.saccade, prev.eyes[k].angles, goal[k]));
+                self.mode = EyeMode::Saccade { plans, t0: t };
+                self.eye_onset = t;
+                self.saccades += 1;
+            }
+        }
+        match &self.mode {
+            EyeMode::Saccade { plans, t0 } => {
+                let s = t + dt - t0;
+                for k in 0..2 {
+                    let smp = plans[k].sample(s);
+                    eyes[k].angles = smp.angles;
+                    eyes[k].rates = smp.rates;
+                }
+                if s >= plans[0].duration().max(plans[1].duration()) {
+                    self.pursuit.reset(eyes[0].angles, eyes[1].angles);
+                    self.mode = EyeMode::Pursuit;
+                }
+            }
+            EyeMode::Pursuit => {
+                let (l, r) = self.pursuit.angles();
+                let inputs = [(goal[0] - l, 0), (goal[1] - r, 1)].map(|(e, k)| {
+                    if input.visible[k] {
+                        EyeInput::seen(e, target_rate[k])
+                    } else {
+                        EyeInput::occluded()
+                    }
+                });
+                let w = head_rate_from_angular_velocity(head_inv * input.head_angvel);
+                let (l, r) = self.pursuit.step(&p.pursuit, dt, &inputs[0], &inputs[1], w);
+                let (rl, rr) = self.pursuit.rates();
+                eyes[0].angles = l;
+                eyes[1].angles = r;
+                eyes[0].rates = rl;
+                eyes[1].rates = rr;
+            }
+        }
+        for k in 0..2 {
+            eyes[k].accel = (eyes[k].rates - prev.eyes[k].rates) / dt;
+        }
+
+        // Head: start rule, then (M8) amplitude and (M9) trajectory.
+        let mut neck = prev.neck;
+        let torso_inv = input.torso_rot.inverse();
+        let face_fwd = input.head_rot * DVec3::Z;
+        let to_point = (input.point - input.head_pos).normalize_or(face_fwd);
+        let from_face = face_fwd.angle_between(to_point);
+        let moving = self.head.as_ref().is_some_and(|(m, t0)| t < t0 + m.duration());
+        if !moving
+            && p.head.should_start(from_face, t - self.eye_onset, input.top_down)
+        {
+            let (y, pt) = yaw_pitch_of(torso_inv * to_point);
+            let target = p.head.target(DVec2::new(y, pt), input.amount);
+            // Re-planning toward where the head already is would be a no-op.
+            if (target - neck.angles).length() > p.saccade.start_threshold / 2.0 {
+                let plan = HeadMove::plan(&p.head, neck.angles, target);
+                self.head = Some((plan, t));
+                self.head_moves += 1;
+            }
+        }
+        if let Some((m, t0)) = &self.head {
+            let smp = m.sample(t + dt - t0);
+            neck.angles = smp.angles;
+            neck.rates = smp.rate;
+            neck.accel = smp.accel;
+        }
+        self.out = GazeOutput { eyes, neck };
+        self.out
+    }
+}

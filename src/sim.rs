@@ -1,0 +1,451 @@
+//! One simulation: the world plus the VH's brain, stepped at a fixed rate
+//! in simulation time. Each tick runs the pipeline of gaze.md 1:
+//! script -> vision -> behaviour -> attention -> oculomotor -> joints ->
+//! physics, and records a [`Sample`].
+
+use glam::{DVec2, DVec3, Quat, Vec3};
+use rand::SeedableRng;
+use rand::rngs::StdRng;
+
+use crate::attention::{Attention, GazeChoice, Source};
+use crate::behaviour::{Behaviour, OpponentView, arm_ik};
+use crate::body::{BodyPlan, Shape, seg};
+use crate::control::{Gains, JointTarget};
+use crate::oculomotor::{GazeInput, Oculomotor};
+use crate::scene::{Action, ActionKind, Hand, LoadedScene, Part, PropShape, PunchTarget, Scene};
+use crate::script::Track;
+use crate::vision::{Seen, see};
+use crate::world::{JointAngles, PropSpec, World, opp};
+
+/// Physics and control rate. 1 kHz: explicit PD on a 7.5 g eyeball needs
+/// omega_n dt << 1 (see control.rs), a 500 deg/s saccade moves 0.5 deg a
+/// step, and rapier still runs this model several times faster than real
+/// time (see benches/step.rs).
+pub const DT: f64 = 0.001;
+
+/// Everything recorded about one tick (one trace row).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sample {
+    /// Simulation time at the end of the tick, s.
+    pub t: f64,
+    /// The VH's action.
+    pub action: ActionKind,
+    /// Gaze target name.
+    pub gaze_target: String,
+    /// Gaze point, world.
+    pub gaze_point: DVec3,
+    /// Who chose it.
+    pub source: Source,
+    /// Its attention amount.
+    pub amount: f64,
+    /// Eye joint targets (yaw, pitch), rad, left then right.
+    pub eye_target: [DVec2; 2],
+    /// Eye joint angles (yaw, pitch), rad.
+    pub eye_actual: [DVec2; 2],
+    /// Angle between each eye's line of sight and the gaze point, rad.
+    pub los_error: [f64; 2],
+    /// Neck target angles.
+    pub neck_target: JointAngles,
+    /// Neck angles.
+    pub neck_actual: JointAngles,
+    /// Head forward direction in the world as (yaw, pitch), rad.
+    pub head_world: DVec2,
+    /// Top saliency scores (body name, score), highest first.
+    pub top_saliency: Vec<(String, f64)>,
+    /// True if every body state is finite.
+    pub finite: bool,
+    /// True while the VH's punch is in flight.
+    pub punching: bool,
+    /// Opponent gloves touching the VH's head this tick.
+    pub head_hit: bool,
+}
+
+/// Independent random streams, one per consumer, all derived from the
+/// scene seed, so adding draws to one never shifts another.
+struct Streams {
+    behaviour: StdRng,
+}
+
+impl Streams {
+    fn new(seed: u64) -> Self {
+        let derive = |k: u64| StdRng::seed_from_u64(seed ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        Streams {
+            behaviour: derive(1),
+        }
+    }
+}
+
+/// A running simulation.
+pub struct Sim {
+    /// The scene (static).
+    pub scene: Scene,
+    /// Gains in force (replaceable while running).
+    pub gains: Gains,
+    /// The physics world.
+    pub world: World,
+    tick: u64,
+    next_event: usize,
+    events: Vec<crate::scene::Event>,
+    tracks: Vec<(usize, Track)>,
+    /// Attention state.
+    pub attention: Attention,
+    /// Action planner state.
+    pub behaviour: Behaviour,
+    /// Eye and head control state.
+    pub oculomotor: Oculomotor,
+    look_at: Option<(DVec3, f64)>,
+    seen: Vec<Seen>,
+    targets: Vec<JointTarget>,
+    rng: Streams,
+    names: Vec<String>,
+    last: Option<Sample>,
+}
+
+impl Sim {
+    /// Build a simulation from a loaded scene.
+    pub fn new(loaded: &LoadedScene) -> Self {
+        let mut scene = loaded.scene.clone();
+        // The personality's A1, A2 are the head law's (M8) amounts.
+        let pers = &scene.vh.personality;
+        scene.vh.oculomotor.head.attention_least = pers.a1;
+        scene.vh.oculomotor.head.attention_most = pers.a2;
+        let plan = BodyPlan::default();
+        let mut world = World::new(plan.clone(), DT);
+        let mut tracks = Vec::new();
+        for k in 0..3 {
+            let b = world.opponent[k];
+            tracks.push((b, Track::new(world.rb(b).translation().as_dvec3())));
+        }
+        for b in &scene.bodies {
+            let shape = match b.shape {
+                PropShape::Ball(r) => Shape::Ball { radius: r as f32 },
+                PropShape::Box(h) => Shape::Cuboid { half: h.as_vec3() },
+            };
+            let idx = world.add_prop(&PropSpec {
+                name: b.name.clone(),
+                shape,
+                position: b.position.as_vec3(),
+                velocity: b.velocity.as_vec3(),
+                angvel: b.angular_velocity.as_vec3(),
+                mass: b.mass as f32,
+                kinematic: b.kinematic,
+                gravity: b.gravity,
+            });
+            if b.kinematic {
+                tracks.push((idx, Track::new(b.position)));
+            }
+        }
+        let mut events = scene.timeline.clone();
+        events.sort_by(|a, b| a.at.total_cmp(&b.at)); // stable: file order at equal times
+        let names = world.bodies.iter().map(|b| b.name.clone()).collect();
+        let mut targets = vec![JointTarget::default(); plan.segments.len()];
+        let behaviour = Behaviour::new(&plan);
+        let gloves = behaviour.glove_targets(0.0);
+        for side in 0..2 {
+            let (s, e) = arm_ik(side, gloves[side]);
+            let base = if side == 0 { seg::UPPER_ARM_L } else { seg::UPPER_ARM_R };
+            targets[base].rotation = s;
+            targets[base + 1].rotation = e;
+        }
+        Sim {
+            rng: Streams::new(scene.seed),
+            oculomotor: Oculomotor::new(&scene.vh.oculomotor),
+            gains: loaded.gains.clone(),
+            scene,
+            world,
+            tick: 0,
+            next_event: 0,
+            events,
+            tracks,
+            attention: Attention::default(),
+            behaviour,
+            look_at: None,
+            seen: Vec::new(),
+            targets,
+            names,
+            last: None,
+        }
+    }
+
+    /// Simulation time now, s.
+    pub fn time(&self) -> f64 {
+        self.tick as f64 * DT
+    }
+
+    /// The last recorded sample.
+    pub fn last(&self) -> Option<&Sample> {
+        self.last.as_ref()
+    }
+
+    /// Bodies in view after the last tick.
+    pub fn seen(&self) -> &[Seen] {
+        &self.seen
+    }
+
+    /// The kinematic track of a body, if it has one.
+    pub fn track_mut(&mut self, body: usize) -> Option<&mut Track> {
+        self.tracks.iter_mut().find(|(b, _)| *b == body).map(|(_, t)| t)
+    }
+
+    fn part_body(&self, part: &Part) -> usize {
+        match part {
+            Part::Head => self.world.opponent[opp::HEAD],
+            Part::LeftGlove => self.world.opponent[opp::LEFT_GLOVE],
+            Part::RightGlove => self.world.opponent[opp::RIGHT_GLOVE],
+            Part::Body(name) => self
+                .world
+                .body_index(name)
+                .expect("scene validation checked body names"),
+        }
+    }
+
+    fn run_events(&mut self, t: f64) {
+        while self.next_event < self.events.len() && self.events[self.next_event].at <= t + 1e-12 {
+            let ev = self.events[self.next_event].clone();
+            self.next_event += 1;
+            match ev.action {
+                Action::Move { part, to, duration } => {
+                    let b = self.part_body(&part);
+                    if let Some(tr) = self.track_mut(b) {
+                        tr.reach(t, to, duration);
+                    }
+                }
+                Action::Wave {
+                    part,
+                    amplitude,
+                    frequency,
+                    duration,
+                } => {
+                    let b = self.part_body(&part);
+                    if let Some(tr) = self.track_mut(b) {
+                        tr.wave(t, amplitude, frequency, duration);
+                    }
+                }
+                Action::Punch {
+                    hand,
+                    target,
+                    speed,
+                } => {
+                    let glove_r = self.world.plan.glove_radius as f64;
+                    let (aim, radius) = match target {
+                        PunchTarget::Head => (
+                            self.world.seg(seg::HEAD).translation().as_dvec3(),
+                            0.10 + glove_r - 0.02,
+                        ),
+                        PunchTarget::Body => (
+                            self.world.seg(seg::TORSO).translation().as_dvec3()
+                                + DVec3::new(0.0, 0.1, 0.1),
+                            glove_r - 0.02,
+                        ),
+                        PunchTarget::Point(p) => (p, 0.0),
+                    };
+                    let part = match hand {
+                        Hand::Left => Part::LeftGlove,
+                        Hand::Right => Part::RightGlove,
+                    };
+                    let b = self.part_body(&part);
+                    let from = self.world.rb(b).translation().as_dvec3();
+                    // Stop where the glove's surface just meets the target's.
+                    let dir = (aim - from).normalize_or(DVec3::NEG_Z);
+                    let to = aim - dir * radius;
+                    if let Some(tr) = self.track_mut(b) {
+                        tr.punch(t, to, speed);
+                    }
+                }
+                Action::LookAt { point, until } => self.look_at = Some((point, until)),
+            }
+        }
+    }
+
+    /// Replace the gains while running.
+    pub fn set_gains(&mut self, gains: Gains) {
+        self.gains = gains;
+    }
+
+    /// Advance one tick and return its sample.
+    pub fn step(&mut self) -> &Sample {
+        let t = self.time();
+        let dt = DT;
+        self.run_events(t);
+        // Kinematic bodies: where they will be at the end of this tick.
+        let t_next = t + dt;
+        for (b, tr) in &mut self.tracks {
+            let p = tr.position(t_next);
+            self.world.set_kinematic(*b, p.as_vec3());
+        }
+
+        // Vision.
+        see(&self.world, &self.scene.vh.vision, &mut self.seen);
+
+        // Behaviour (top-down request, glove targets).
+        let head_c = self.world.seg(seg::HEAD).translation().as_dvec3();
+        let torso_c = self.world.seg(seg::TORSO).translation().as_dvec3();
+        let view = OpponentView {
+            seen: &self.seen,
+            parts: self.world.opponent,
+            vh_points: [head_c, torso_c, (head_c + torso_c) / 2.0],
+        };
+        let top_down = self.behaviour.step(
+            &self.scene.vh.behaviour,
+            &self.scene.vh.personality,
+            &view,
+            t,
+            dt,
+            &mut self.rng.behaviour,
+        );
+
+        // Attention (or the scene's override).
+        let world = &self.world;
+        let body_pos = |b: usize| world.rb(b).translation().as_dvec3();
+        let choice = match self.look_at {
+            Some((point, until)) if t < until => {
+                let c = GazeChoice {
+                    name: "point".into(),
+                    body: None,
+                    point,
+                    amount: self.scene.vh.personality.a2,
+                    source: Source::Override,
+                };
+                self.attention.force(c.clone(), t);
+                c
+            }
+            _ => self.attention.step(
+                &self.scene.vh.attention,
+                &self.seen,
+                &self.names,
+                &top_down,
+                body_pos,
+                t,
+                dt,
+            ),
+        };
+
+        // Oculomotor: eye and neck targets.
+        let head = self.world.seg(seg::HEAD);
+        let input = GazeInput {
+            point: choice.point,
+            target_id: target_id(&choice),
+            amount: choice.amount,
+            top_down: choice.source != Source::BottomUp,
+            head_pos: head.translation().as_dvec3(),
+            head_rot: head.rotation().as_dquat(),
+            head_angvel: head.angvel().as_dvec3(),
+            torso_rot: self.world.seg(seg::TORSO).rotation().as_dquat(),
+            eye_pos: [seg::EYE_L, seg::EYE_R].map(|e| self.world.seg(e).translation().as_dvec3()),
+            eye_angles: [seg::EYE_L, seg::EYE_R].map(|e| {
+                let a = self.world.joint_angles(e);
+                DVec2::new(a.yaw, a.pitch)
+            }),
+            neck_angles: self.world.joint_angles(seg::HEAD),
+            visible: [true, true],
+        };
+        let out = self.oculomotor.step(&self.scene.vh.oculomotor, &input, t, dt);
+        for (k, s) in [seg::EYE_L, seg::EYE_R].into_iter().enumerate() {
+            self.targets[s] = out.eyes[k].joint_target();
+        }
+        self.targets[seg::HEAD] = out.neck.joint_target();
+
+        // Arms: inverse kinematics of the planned glove positions; the
+        // velocity reference comes from differencing the IK solution.
+        let gloves = self.behaviour.glove_targets(t_next);
+        for side in 0..2 {
+            let (s, e) = arm_ik(side, gloves[side]);
+            let base = if side == 0 { seg::UPPER_ARM_L } else { seg::UPPER_ARM_R };
+            for (k, q) in [(base, s), (base + 1, e)] {
+                let prev = self.targets[k].rotation;
+                let mut d = q * prev.inverse();
+                if d.w < 0.0 {
+                    d = -d;
+                }
+                self.targets[k] = JointTarget {
+                    rotation: q,
+                    velocity: d.to_scaled_axis() / dt as f32,
+                    acceleration: Vec3::ZERO,
+                };
+            }
+        }
+
+        // Joints and physics.
+        self.world.apply_control(&self.gains, &self.targets);
+        self.world.step();
+        self.tick += 1;
+
+        let neck_target = JointAngles {
+            yaw: out.neck.angles.x,
+            pitch: out.neck.angles.y,
+            roll: 0.0,
+        };
+        let sample = self.sample(&choice, &out.eyes.map(|e| e.angles), neck_target);
+        self.last = Some(sample);
+        self.last.as_ref().expect("just set")
+    }
+
+    fn sample(&self, choice: &GazeChoice, eye_target: &[DVec2; 2], neck_target: JointAngles) -> Sample {
+        let w = &self.world;
+        let mut los_error = [0.0; 2];
+        let mut eye_actual = [DVec2::ZERO; 2];
+        for (k, s) in [seg::EYE_L, seg::EYE_R].into_iter().enumerate() {
+            let rb = w.seg(s);
+            let los = (*rb.rotation() * Vec3::Z).as_dvec3();
+            let to = (choice.point - rb.translation().as_dvec3()).normalize_or(DVec3::Z);
+            los_error[k] = los.dot(to).clamp(-1.0, 1.0).acos();
+            let a = w.joint_angles(s);
+            eye_actual[k] = DVec2::new(a.yaw, a.pitch);
+        }
+        let head_fwd = (*w.seg(seg::HEAD).rotation() * Vec3::Z).as_dvec3();
+        let (hy, hp) = crate::math::yaw_pitch_of(head_fwd);
+        let mut top: Vec<(String, f64)> = self
+            .seen
+            .iter()
+            .map(|s| (self.names[s.body].clone(), self.attention.scores[s.body]))
+            .collect();
+        top.sort_by(|a, b| b.1.total_cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
+        top.truncate(3);
+        let head_body = seg::HEAD;
+        let head_hit = [opp::LEFT_GLOVE, opp::RIGHT_GLOVE]
+            .iter()
+            .any(|&g| w.in_contact(w.opponent[g], head_body));
+        Sample {
+            t: self.time(),
+            action: self.behaviour.action(),
+            gaze_target: choice.name.clone(),
+            gaze_point: choice.point,
+            source: choice.source,
+            amount: choice.amount,
+            eye_target: *eye_target,
+            eye_actual,
+            los_error,
+            neck_target,
+            neck_actual: w.joint_angles(seg::HEAD),
+            head_world: DVec2::new(hy, hp),
+            top_saliency: top,
+            finite: w.is_finite(),
+            punching: self.behaviour.punching(),
+            head_hit,
+        }
+    }
+}
+
+/// A stable identity for "the same target" across ticks (a body, or a
+/// fixed point), so the oculomotor can tell a new target from a moving one.
+fn target_id(c: &GazeChoice) -> u64 {
+    let kind = match c.source {
+        Source::BottomUp => 1u64,
+        Source::TopDown => 2,
+        Source::Override => 3,
+    };
+    let body = c.body.map_or(0xFFFF, |b| b as u64);
+    let mut h = kind << 48 | body << 16;
+    for byte in c.name.bytes() {
+        h = h.rotate_left(5) ^ byte as u64;
+    }
+    h
+}
+
+/// Make a joint target from a rotation with zero velocity (tests, tuning).
+pub fn hold(rotation: Quat) -> JointTarget {
+    JointTarget {
+        rotation,
+        ..Default::default()
+    }
+}
