@@ -98,6 +98,7 @@ pub struct GazeChoice {
 /// Attention's evolving state.
 #[derive(Clone, Debug, Default)]
 pub struct Attention {
+    names: Vec<String>,
     smoothed: Vec<f64>,
     weight: Vec<f64>,
     current: Option<GazeChoice>,
@@ -108,6 +109,14 @@ pub struct Attention {
 }
 
 impl Attention {
+    /// Attention over the bodies of a world, named by index.
+    pub fn new(names: Vec<String>) -> Self {
+        Attention {
+            names,
+            ..Default::default()
+        }
+    }
+
     /// The current choice, if any.
     pub fn current(&self) -> Option<&GazeChoice> {
         self.current.as_ref()
@@ -119,13 +128,12 @@ impl Attention {
         &mut self,
         p: &AttentionParams,
         seen: &[Seen],
-        names: &[String],
         top_down: &TopDown,
         body_pos: impl Fn(usize) -> DVec3,
         t: f64,
         dt: f64,
     ) -> GazeChoice {
-        let n = names.len();
+        let n = self.names.len();
         self.smoothed.resize(n, 0.0);
         self.weight.resize(n, 1.0);
         self.scores.clear();
@@ -140,8 +148,8 @@ impl Attention {
             in_view[s.body] = true;
             self.smoothed[s.body] += alpha * (s.saliency - self.smoothed[s.body]);
         }
-        for b in 0..n {
-            if !in_view[b] {
+        for (b, &visible) in in_view.iter().enumerate() {
+            if !visible {
                 self.smoothed[b] *= 1.0 - alpha;
             }
             let held = self
@@ -154,11 +162,13 @@ impl Attention {
             } else {
                 *w += (1.0 - *w) * (dt / p.recovery_tau);
             }
-            if in_view[b] {
+            if visible {
                 self.scores[b] = self.smoothed[b] * *w;
             }
         }
-        let td_point = top_down.body.map_or(top_down.offset, |b| body_pos(b) + top_down.offset);
+        let td_point = top_down
+            .body
+            .map_or(top_down.offset, |b| body_pos(b) + top_down.offset);
         let top = GazeChoice {
             name: top_down.name.clone(),
             body: top_down.body,
@@ -172,7 +182,7 @@ impl Attention {
                 .map(|s| (s.body, self.scores[s.body]))
                 .max_by(|a, b| a.1.total_cmp(&b.1).then(b.0.cmp(&a.0)))
                 .map(|(b, score)| GazeChoice {
-                    name: names[b].clone(),
+                    name: self.names[b].clone(),
                     body: Some(b),
                     point: body_pos(b),
                     amount: score,
@@ -227,7 +237,11 @@ impl Attention {
 
     /// Force a choice (gaze override); attention's timers follow it.
     pub fn force(&mut self, choice: GazeChoice, t: f64) {
-        if self.current.as_ref().is_none_or(|c| !same_target(c, &choice)) {
+        if self
+            .current
+            .as_ref()
+            .is_none_or(|c| !same_target(c, &choice))
+        {
             self.since = t;
         }
         self.current = Some(choice);
@@ -270,23 +284,33 @@ mod tests {
             min_fixation: 0.0,
             ..Default::default()
         };
-        let mut a = Attention::default();
-        let c = a.step(&p, &[seen(1, 1.0)], &names(), &face(1.5), |_| DVec3::ZERO, 0.0, 0.001);
+        let mut a = Attention::new(names());
+        let c = a.step(&p, &[seen(1, 1.0)], &face(1.5), |_| DVec3::ZERO, 0.0, 0.001);
         assert_eq!((c.name.as_str(), c.source), ("head", Source::TopDown));
-        let c = a.step(&p, &[seen(1, 2.0)], &names(), &face(1.5), |_| DVec3::ZERO, 0.001, 0.001);
-        assert_eq!((c.name.as_str(), c.source), ("left_glove", Source::BottomUp));
+        let c = a.step(
+            &p,
+            &[seen(1, 2.0)],
+            &face(1.5),
+            |_| DVec3::ZERO,
+            0.001,
+            0.001,
+        );
+        assert_eq!(
+            (c.name.as_str(), c.source),
+            ("left_glove", Source::BottomUp)
+        );
         assert_eq!(c.amount, 2.0);
     }
 
     #[test]
     fn habituation_releases_a_constantly_salient_body() {
         let p = AttentionParams::default();
-        let mut a = Attention::default();
+        let mut a = Attention::new(names());
         let dt = 0.001;
         let mut first_back = None;
         for i in 0..10_000 {
             let t = i as f64 * dt;
-            let c = a.step(&p, &[seen(2, 3.0)], &names(), &face(1.5), |_| DVec3::ZERO, t, dt);
+            let c = a.step(&p, &[seen(2, 3.0)], &face(1.5), |_| DVec3::ZERO, t, dt);
             if t > 0.5 && c.name == "head" && first_back.is_none() {
                 first_back = Some(t);
             }
@@ -296,7 +320,10 @@ mod tests {
         // is over; its weight then falls as w = 0.2 + 0.8 e^(-t/2.5) until
         // 3.0 w < 1.5, i.e. w = 0.5.
         let expect = p.min_fixation - 2.5 * ((0.5 - 0.2) / 0.8f64).ln();
-        assert!((back - expect).abs() < 0.01, "back at {back}, expected {expect}");
+        assert!(
+            (back - expect).abs() < 0.01,
+            "back at {back}, expected {expect}"
+        );
     }
 
     #[test]
@@ -305,7 +332,7 @@ mod tests {
             smoothing_tau: 0.0,
             ..Default::default()
         };
-        let mut a = Attention::default();
+        let mut a = Attention::new(names());
         let dt = 0.001;
         let mut switches = 0;
         let mut last = String::new();
@@ -313,12 +340,15 @@ mod tests {
             let t = i as f64 * dt;
             // saliency alternating around the face's amount every tick
             let s = if i % 2 == 0 { 1.6 } else { 1.4 };
-            let c = a.step(&p, &[seen(1, s)], &names(), &face(1.5), |_| DVec3::ZERO, t, dt);
+            let c = a.step(&p, &[seen(1, s)], &face(1.5), |_| DVec3::ZERO, t, dt);
             if c.name != last {
                 switches += 1;
                 last = c.name;
             }
         }
-        assert!(switches <= 1 + (1.0 / p.min_fixation) as usize, "{switches} switches");
+        assert!(
+            switches <= 1 + (1.0 / p.min_fixation) as usize,
+            "{switches} switches"
+        );
     }
 }

@@ -154,7 +154,11 @@ pub const FOREARM_LEN: f32 = 0.30;
 impl BodyPlan {
     /// Centre of the VH's left (`side = 0`) or right (`side = 1`) eye at rest.
     pub fn eye_centre(side: usize) -> Vec3 {
-        let x = if side == 0 { eye::IPD / 2.0 } else { -eye::IPD / 2.0 };
+        let x = if side == 0 {
+            eye::IPD / 2.0
+        } else {
+            -eye::IPD / 2.0
+        };
         Vec3::new(x, HEAD_TOP_Y - eye::BELOW_TOP, EYE_FORWARD)
     }
 
@@ -227,7 +231,9 @@ impl Default for BodyPlan {
                 joint: JointKind::Ball,
                 pivot: c,
                 centre: c,
-                shape: Shape::Ball { radius: eye::RADIUS },
+                shape: Shape::Ball {
+                    radius: eye::RADIUS,
+                },
                 axis_to: Vec3::Y,
                 mass: eye::MASS,
                 group: Some(Group::Eye),
@@ -290,10 +296,7 @@ impl Default for BodyPlan {
             segments,
             opponent_head: Vec3::new(0.0, head_centre.y, 0.92),
             opponent_head_radius: 0.10,
-            opponent_gloves: [
-                Vec3::new(-0.13, 1.55, 0.66),
-                Vec3::new(0.13, 1.55, 0.66),
-            ],
+            opponent_gloves: [Vec3::new(-0.13, 1.55, 0.66), Vec3::new(0.13, 1.55, 0.66)],
             glove_radius: 0.06,
         }
     }

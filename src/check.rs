@@ -11,7 +11,9 @@ use serde::de::{Deserialize, Deserializer, Error};
 fn read<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
     let v = f64::deserialize(d)?;
     if !v.is_finite() {
-        return Err(D::Error::custom(format!("must be a finite number, got {v}")));
+        return Err(D::Error::custom(format!(
+            "must be a finite number, got {v}"
+        )));
     }
     Ok(v)
 }
@@ -48,7 +50,9 @@ pub fn unit_interval<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
 pub fn in_range<'de, D: Deserializer<'de>>(d: D, lo: f64, hi: f64) -> Result<f64, D::Error> {
     let v = read(d)?;
     if !(lo..=hi).contains(&v) {
-        return Err(D::Error::custom(format!("must be in [{lo}, {hi}], got {v}")));
+        return Err(D::Error::custom(format!(
+            "must be in [{lo}, {hi}], got {v}"
+        )));
     }
     Ok(v)
 }
@@ -57,7 +61,9 @@ pub fn in_range<'de, D: Deserializer<'de>>(d: D, lo: f64, hi: f64) -> Result<f64
 pub fn vec3<'de, D: Deserializer<'de>>(d: D) -> Result<glam::DVec3, D::Error> {
     let v = <[f64; 3]>::deserialize(d)?;
     if v.iter().any(|c| !c.is_finite()) {
-        return Err(D::Error::custom(format!("components must be finite, got {v:?}")));
+        return Err(D::Error::custom(format!(
+            "components must be finite, got {v:?}"
+        )));
     }
     Ok(glam::DVec3::from_array(v))
 }

@@ -33,10 +33,7 @@ pub struct JointGains {
     #[serde(deserialize_with = "crate::check::non_negative")]
     pub kd: f64,
     /// Scale of the inertia feed-forward of the planned acceleration (0 = pure PD).
-    #[serde(
-        default = "one",
-        deserialize_with = "crate::check::unit_interval"
-    )]
+    #[serde(default = "one", deserialize_with = "crate::check::unit_interval")]
     pub feedforward: f64,
 }
 
@@ -214,7 +211,10 @@ mod tests {
             ..s
         };
         let tau = pd_torque(&g, &target, &moving);
-        assert!((tau + Vec3::X).length() < 1e-5, "pure damping at target: {tau}");
+        assert!(
+            (tau + Vec3::X).length() < 1e-5,
+            "pure damping at target: {tau}"
+        );
     }
 
     #[test]

@@ -47,7 +47,7 @@ fn angle(s: &Sample, j: JointName) -> f64 {
 
 fn inside(t: f64, from: f64, to: f64) -> bool {
     // Samples are stamped at the end of their tick; half-open on the left.
-    t > from - 1e-9 && t <= to + 1e-9
+    t > from + 1e-9 && t <= to + 1e-9
 }
 
 impl Checker {
@@ -126,7 +126,11 @@ impl Checker {
 }
 
 fn share(a: &Acc) -> f64 {
-    if a.n == 0 { 0.0 } else { a.hits as f64 / a.n as f64 }
+    if a.n == 0 {
+        0.0
+    } else {
+        a.hits as f64 / a.n as f64
+    }
 }
 
 fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
@@ -139,7 +143,10 @@ fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
         } => {
             let v = share(a);
             Verdict {
-                what: format!("gaze on `{target}` >= {:.0}% of [{from}, {to}] s", at_least * 100.0),
+                what: format!(
+                    "gaze on `{target}` >= {:.0}% of [{from}, {to}] s",
+                    at_least * 100.0
+                ),
                 measured: format!("{:.1}%", v * 100.0),
                 value: v,
                 pass: a.n > 0 && v >= *at_least,
@@ -153,7 +160,10 @@ fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
         } => {
             let v = share(a);
             Verdict {
-                what: format!("gaze on `{target}` <= {:.0}% of [{from}, {to}] s", at_most * 100.0),
+                what: format!(
+                    "gaze on `{target}` <= {:.0}% of [{from}, {to}] s",
+                    at_most * 100.0
+                ),
                 measured: format!("{:.1}%", v * 100.0),
                 value: v,
                 pass: a.n > 0 && v <= *at_most,
@@ -161,9 +171,9 @@ fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
         }
         Expect::GazeReaches { target, from, to } => Verdict {
             what: format!("gaze reaches `{target}` within [{from}, {to}] s"),
-            measured: a
-                .first
-                .map_or("never".into(), |t| format!("at {t:.3} s ({:.0} ms after {from})", (t - from) * 1e3)),
+            measured: a.first.map_or("never".into(), |t| {
+                format!("at {t:.3} s ({:.0} ms after {from})", (t - from) * 1e3)
+            }),
             value: a.first.map_or(f64::INFINITY, |t| t - from),
             pass: a.first.is_some(),
         },
@@ -196,7 +206,10 @@ fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
         } => {
             let v = share(a);
             Verdict {
-                what: format!("action {action:?} >= {:.0}% of [{from}, {to}] s", at_least * 100.0),
+                what: format!(
+                    "action {action:?} >= {:.0}% of [{from}, {to}] s",
+                    at_least * 100.0
+                ),
                 measured: format!("{:.1}%", v * 100.0),
                 value: v,
                 pass: a.n > 0 && v >= *at_least,
@@ -204,7 +217,11 @@ fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
         }
         Expect::Finite => Verdict {
             what: "state finite throughout (no NaN)".into(),
-            measured: if a.bad { "non-finite state".into() } else { format!("{} ticks finite", a.n) },
+            measured: if a.bad {
+                "non-finite state".into()
+            } else {
+                format!("{} ticks finite", a.n)
+            },
             value: if a.bad { 1.0 } else { 0.0 },
             pass: !a.bad && a.n > 0,
         },

@@ -67,9 +67,11 @@ fn run(
         anyhow::bail!("--duration: must be a positive number of seconds, got {d}");
     }
     let mut file = match &trace {
-        Some(p) => Some(BufWriter::new(
-            File::create(p).with_context(|| format!("cannot create trace {}", p.display()))?,
-        )),
+        Some(p) => {
+            Some(BufWriter::new(File::create(p).with_context(|| {
+                format!("cannot create trace {}", p.display())
+            })?))
+        }
         None => None,
     };
     let wall = std::time::Instant::now(); // reporting only; the model never reads it
@@ -99,18 +101,14 @@ fn run(
         );
     }
     let passed = report.verdicts.iter().filter(|v| v.pass).count();
-    println!(
-        "{passed} passed, {} failed",
-        report.verdicts.len() - passed
-    );
+    println!("{passed} passed, {} failed", report.verdicts.len() - passed);
     Ok(report.passed())
 }
 
 fn main() -> ExitCode {
     tracing_subscriber::fmt()
         .with_env_filter(
-            tracing_subscriber::EnvFilter::try_from_default_env()
-                .unwrap_or_else(|_| "warn".into()),
+            tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| "warn".into()),
         )
         .with_writer(std::io::stderr)
         .init();

@@ -67,7 +67,10 @@ mod tests {
     fn yaw_pitch_round_trip_and_signs() {
         let d = dir_from_yaw_pitch(0.3, 0.0);
         assert!(d.x > 0.0, "positive yaw looks to the left (+X)");
-        assert!(dir_from_yaw_pitch(0.0, 0.2).y > 0.0, "positive pitch looks up");
+        assert!(
+            dir_from_yaw_pitch(0.0, 0.2).y > 0.0,
+            "positive pitch looks up"
+        );
         for &(y, p) in &[(0.0, 0.0), (0.5, -0.3), (-1.2, 0.7), (2.0, 1.0)] {
             let (y2, p2) = yaw_pitch_of(dir_from_yaw_pitch(y, p));
             assert!((y - y2).abs() < 1e-12 && (p - p2).abs() < 1e-12);

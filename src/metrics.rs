@@ -124,7 +124,11 @@ mod tests {
             let (t, y) = response(z, 20.0);
             let m = step_metrics(&t, &y, 1.0);
             let expect = (-z * std::f64::consts::PI / (1.0 - z * z).sqrt()).exp();
-            assert!((m.overshoot - expect).abs() < 1e-3, "zeta {z}: {} vs {expect}", m.overshoot);
+            assert!(
+                (m.overshoot - expect).abs() < 1e-3,
+                "zeta {z}: {} vs {expect}",
+                m.overshoot
+            );
         }
     }
 
@@ -134,25 +138,49 @@ mod tests {
         // 0.40381 s (the exact response solved at 1e-5 s resolution).
         let (t, y) = response(0.5, 20.0);
         let m = step_metrics(&t, &y, 1.0);
-        assert!((m.settling_time - 0.40381).abs() < 2e-4, "{}", m.settling_time);
+        assert!(
+            (m.settling_time - 0.40381).abs() < 2e-4,
+            "{}",
+            m.settling_time
+        );
         assert!((m.rise_time - 0.08188).abs() < 2e-4, "{}", m.rise_time);
         assert!(m.steady_state_error < 1e-3);
         // critically damped: no overshoot
         let t2: Vec<f64> = (0..20_000).map(|i| i as f64 * 1e-4).collect();
-        let y2: Vec<f64> = t2.iter().map(|&t| 1.0 - (1.0 + 20.0 * t) * (-20.0 * t).exp()).collect();
+        let y2: Vec<f64> = t2
+            .iter()
+            .map(|&t| 1.0 - (1.0 + 20.0 * t) * (-20.0 * t).exp())
+            .collect();
         let m2 = step_metrics(&t2, &y2, 1.0);
         assert_eq!(m2.overshoot, 0.0);
         // 2 % settling of the critically damped system: (1 + wt) e^{-wt} = 0.02 -> wt = 5.834
-        assert!((m2.settling_time - 5.834 / 20.0).abs() < 2e-3, "{}", m2.settling_time);
+        assert!(
+            (m2.settling_time - 5.834 / 20.0).abs() < 2e-3,
+            "{}",
+            m2.settling_time
+        );
     }
 
     #[test]
     fn instability_is_detected_not_crashed_on() {
-        assert_eq!(instability(&[0.0, f64::NAN], 1.0, 1.0), Some(Instability::NonFinite));
-        let growing: Vec<f64> = (0..100).map(|i| (i as f64 * 0.5).sin() * 1.1f64.powi(i)).collect();
-        assert_eq!(instability(&growing, 0.0, 1.0), Some(Instability::Divergence));
-        let cycling: Vec<f64> = (0..400).map(|i| 1.0 + 0.3 * (i as f64 * 0.3).sin()).collect();
-        assert_eq!(instability(&cycling, 1.0, 1.0), Some(Instability::LimitCycle));
+        assert_eq!(
+            instability(&[0.0, f64::NAN], 1.0, 1.0),
+            Some(Instability::NonFinite)
+        );
+        let growing: Vec<f64> = (0..100)
+            .map(|i| (i as f64 * 0.5).sin() * 1.1f64.powi(i))
+            .collect();
+        assert_eq!(
+            instability(&growing, 0.0, 1.0),
+            Some(Instability::Divergence)
+        );
+        let cycling: Vec<f64> = (0..400)
+            .map(|i| 1.0 + 0.3 * (i as f64 * 0.3).sin())
+            .collect();
+        assert_eq!(
+            instability(&cycling, 1.0, 1.0),
+            Some(Instability::LimitCycle)
+        );
         let (_, y) = response(0.5, 20.0);
         assert_eq!(instability(&y, 1.0, 1.0), None);
     }

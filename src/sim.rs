@@ -44,6 +44,9 @@ pub struct Sample {
     pub eye_actual: [DVec2; 2],
     /// Angle between each eye's line of sight and the gaze point, rad.
     pub los_error: [f64; 2],
+    /// Each eye's line of sight minus its direction to the gaze point, as
+    /// world (yaw, pitch) differences, rad: the signed gaze error.
+    pub gaze_error: [DVec2; 2],
     /// Neck target angles.
     pub neck_target: JointAngles,
     /// Neck angles.
@@ -64,6 +67,7 @@ pub struct Sample {
 /// scene seed, so adding draws to one never shifts another.
 struct Streams {
     behaviour: StdRng,
+    oculomotor: StdRng,
 }
 
 impl Streams {
@@ -71,6 +75,7 @@ impl Streams {
         let derive = |k: u64| StdRng::seed_from_u64(seed ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15));
         Streams {
             behaviour: derive(1),
+            oculomotor: derive(2),
         }
     }
 }
@@ -137,19 +142,24 @@ impl Sim {
         }
         let mut events = scene.timeline.clone();
         events.sort_by(|a, b| a.at.total_cmp(&b.at)); // stable: file order at equal times
-        let names = world.bodies.iter().map(|b| b.name.clone()).collect();
+        let names: Vec<String> = world.bodies.iter().map(|b| b.name.clone()).collect();
         let mut targets = vec![JointTarget::default(); plan.segments.len()];
         let behaviour = Behaviour::new(&plan);
         let gloves = behaviour.glove_targets(0.0);
-        for side in 0..2 {
-            let (s, e) = arm_ik(side, gloves[side]);
-            let base = if side == 0 { seg::UPPER_ARM_L } else { seg::UPPER_ARM_R };
+        for (side, glove) in gloves.into_iter().enumerate() {
+            let (s, e) = arm_ik(side, glove);
+            let base = if side == 0 {
+                seg::UPPER_ARM_L
+            } else {
+                seg::UPPER_ARM_R
+            };
             targets[base].rotation = s;
             targets[base + 1].rotation = e;
         }
+        let mut rng = Streams::new(scene.seed);
         Sim {
-            rng: Streams::new(scene.seed),
-            oculomotor: Oculomotor::new(&scene.vh.oculomotor),
+            oculomotor: Oculomotor::new(&scene.vh.oculomotor, &mut rng.oculomotor),
+            rng,
             gains: loaded.gains.clone(),
             scene,
             world,
@@ -157,7 +167,7 @@ impl Sim {
             next_event: 0,
             events,
             tracks,
-            attention: Attention::default(),
+            attention: Attention::new(names.clone()),
             behaviour,
             look_at: None,
             seen: Vec::new(),
@@ -184,7 +194,10 @@ impl Sim {
 
     /// The kinematic track of a body, if it has one.
     pub fn track_mut(&mut self, body: usize) -> Option<&mut Track> {
-        self.tracks.iter_mut().find(|(b, _)| *b == body).map(|(_, t)| t)
+        self.tracks
+            .iter_mut()
+            .find(|(b, _)| *b == body)
+            .map(|(_, t)| t)
     }
 
     fn part_body(&self, part: &Part) -> usize {
@@ -312,7 +325,6 @@ impl Sim {
             _ => self.attention.step(
                 &self.scene.vh.attention,
                 &self.seen,
-                &self.names,
                 &top_down,
                 body_pos,
                 t,
@@ -339,7 +351,13 @@ impl Sim {
             neck_angles: self.world.joint_angles(seg::HEAD),
             visible: [true, true],
         };
-        let out = self.oculomotor.step(&self.scene.vh.oculomotor, &input, t, dt);
+        let out = self.oculomotor.step(
+            &self.scene.vh.oculomotor,
+            &input,
+            t,
+            dt,
+            &mut self.rng.oculomotor,
+        );
         for (k, s) in [seg::EYE_L, seg::EYE_R].into_iter().enumerate() {
             self.targets[s] = out.eyes[k].joint_target();
         }
@@ -348,9 +366,13 @@ impl Sim {
         // Arms: inverse kinematics of the planned glove positions; the
         // velocity reference comes from differencing the IK solution.
         let gloves = self.behaviour.glove_targets(t_next);
-        for side in 0..2 {
-            let (s, e) = arm_ik(side, gloves[side]);
-            let base = if side == 0 { seg::UPPER_ARM_L } else { seg::UPPER_ARM_R };
+        for (side, glove) in gloves.into_iter().enumerate() {
+            let (s, e) = arm_ik(side, glove);
+            let base = if side == 0 {
+                seg::UPPER_ARM_L
+            } else {
+                seg::UPPER_ARM_R
+            };
             for (k, q) in [(base, s), (base + 1, e)] {
                 let prev = self.targets[k].rotation;
                 let mut d = q * prev.inverse();
@@ -380,15 +402,24 @@ impl Sim {
         self.last.as_ref().expect("just set")
     }
 
-    fn sample(&self, choice: &GazeChoice, eye_target: &[DVec2; 2], neck_target: JointAngles) -> Sample {
+    fn sample(
+        &self,
+        choice: &GazeChoice,
+        eye_target: &[DVec2; 2],
+        neck_target: JointAngles,
+    ) -> Sample {
         let w = &self.world;
         let mut los_error = [0.0; 2];
+        let mut gaze_error = [DVec2::ZERO; 2];
         let mut eye_actual = [DVec2::ZERO; 2];
         for (k, s) in [seg::EYE_L, seg::EYE_R].into_iter().enumerate() {
             let rb = w.seg(s);
             let los = (*rb.rotation() * Vec3::Z).as_dvec3();
             let to = (choice.point - rb.translation().as_dvec3()).normalize_or(DVec3::Z);
             los_error[k] = los.dot(to).clamp(-1.0, 1.0).acos();
+            let (ly, lp) = crate::math::yaw_pitch_of(los);
+            let (ty, tp) = crate::math::yaw_pitch_of(to);
+            gaze_error[k] = DVec2::new(ly - ty, lp - tp);
             let a = w.joint_angles(s);
             eye_actual[k] = DVec2::new(a.yaw, a.pitch);
         }
@@ -415,6 +446,7 @@ impl Sim {
             eye_target: *eye_target,
             eye_actual,
             los_error,
+            gaze_error,
             neck_target,
             neck_actual: w.joint_angles(seg::HEAD),
             head_world: DVec2::new(hy, hp),

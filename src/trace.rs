@@ -23,7 +23,9 @@ const COLUMNS: &[(&str, Cell)] = &[
     ("t", |s, o| {
         let _ = write!(o, "{:.3}", s.t);
     }),
-    ("action", |s, o| o.push_str(&format!("{:?}", s.action).to_lowercase())),
+    ("action", |s, o| {
+        o.push_str(&format!("{:?}", s.action).to_lowercase())
+    }),
     ("gaze_target", |s, o| o.push_str(&s.gaze_target)),
     ("gaze_x", |s, o| num(o, s.gaze_point.x)),
     ("gaze_y", |s, o| num(o, s.gaze_point.y)),
@@ -48,8 +50,12 @@ const COLUMNS: &[(&str, Cell)] = &[
     ("neck_roll", |s, o| num(o, deg(s.neck_actual.roll))),
     ("head_yaw", |s, o| num(o, deg(s.head_world.x))),
     ("head_pitch", |s, o| num(o, deg(s.head_world.y))),
-    ("punching", |s, o| o.push_str(if s.punching { "1" } else { "0" })),
-    ("head_hit", |s, o| o.push_str(if s.head_hit { "1" } else { "0" })),
+    ("punching", |s, o| {
+        o.push_str(if s.punching { "1" } else { "0" })
+    }),
+    ("head_hit", |s, o| {
+        o.push_str(if s.head_hit { "1" } else { "0" })
+    }),
     ("salient_1", |s, o| top(o, s, 0)),
     ("salient_2", |s, o| top(o, s, 1)),
     ("salient_3", |s, o| top(o, s, 2)),

@@ -251,7 +251,10 @@ fn first_hit(world: &World, from: Vec3, dir: DVec3, target: usize) -> bool {
     let len = dir.length() as f32;
     let ray = Ray::new(from, (dir / dir.length()).as_vec3());
     let is_vh = |c: &rapier3d::prelude::Collider| {
-        matches!(world.bodies.get(c.user_data as usize).map(|b| b.owner), Some(Owner::Vh(_)))
+        matches!(
+            world.bodies.get(c.user_data as usize).map(|b| b.owner),
+            Some(Owner::Vh(_))
+        )
     };
     let pred = |_h, c: &rapier3d::prelude::Collider| !is_vh(c) || c.user_data as usize == target;
     let filter = QueryFilter::default().predicate(&pred);
@@ -268,18 +271,32 @@ mod tests {
     #[test]
     fn m1_terms_separate_the_three_motions() {
         let e = DVec3::Z;
-        assert_eq!(saliency_terms(DVec3::new(2.0, 0.0, 0.0), DVec3::ZERO, e), [2.0, 0.0, 0.0]);
-        assert_eq!(saliency_terms(DVec3::new(0.0, 0.0, -3.0), DVec3::ZERO, e), [0.0, 3.0, 0.0]);
-        assert_eq!(saliency_terms(DVec3::ZERO, DVec3::new(0.0, 0.0, 5.0), e), [0.0, 0.0, 5.0]);
+        assert_eq!(
+            saliency_terms(DVec3::new(2.0, 0.0, 0.0), DVec3::ZERO, e),
+            [2.0, 0.0, 0.0]
+        );
+        assert_eq!(
+            saliency_terms(DVec3::new(0.0, 0.0, -3.0), DVec3::ZERO, e),
+            [0.0, 3.0, 0.0]
+        );
+        assert_eq!(
+            saliency_terms(DVec3::ZERO, DVec3::new(0.0, 0.0, 5.0), e),
+            [0.0, 0.0, 5.0]
+        );
         // spin about an axis across the line of sight is not "rotation about" it
-        assert_eq!(saliency_terms(DVec3::ZERO, DVec3::new(5.0, 0.0, 0.0), e), [0.0, 0.0, 0.0]);
+        assert_eq!(
+            saliency_terms(DVec3::ZERO, DVec3::new(5.0, 0.0, 0.0), e),
+            [0.0, 0.0, 0.0]
+        );
     }
 
     #[test]
     fn field_edges_are_per_eye() {
         let f = FieldOfView::default();
         let los = DVec3::Z;
-        let at = |yaw: f64, pitch: f64| crate::math::dir_from_yaw_pitch(yaw.to_radians(), pitch.to_radians());
+        let at = |yaw: f64, pitch: f64| {
+            crate::math::dir_from_yaw_pitch(yaw.to_radians(), pitch.to_radians())
+        };
         // left eye: temporal (+yaw) to 100 deg, nasal (-yaw) to 60 deg
         assert!(in_field(&f, los, at(99.0, 0.0), true));
         assert!(!in_field(&f, los, at(101.0, 0.0), true));
@@ -290,7 +307,9 @@ mod tests {
         assert!(!in_field(&f, los, at(61.0, 0.0), false));
         // vertical: up 60, down 75
         assert!(in_field(&f, los, at(0.0, 59.0), true) && !in_field(&f, los, at(0.0, 61.0), true));
-        assert!(in_field(&f, los, at(0.0, -74.0), true) && !in_field(&f, los, at(0.0, -76.0), true));
+        assert!(
+            in_field(&f, los, at(0.0, -74.0), true) && !in_field(&f, los, at(0.0, -76.0), true)
+        );
         // the field moves with the line of sight
         let turned = at(40.0, 0.0);
         assert!(in_field(&f, turned, at(139.0, 0.0), true));

@@ -143,7 +143,8 @@ impl World {
         phys.integration_parameters.dt = dt as f32;
         let mut bodies = Vec::new();
         let mut handles = Vec::new();
-        let vh_groups = InteractionGroups::new(VH_GROUP, Group32::ALL ^ VH_GROUP, Default::default());
+        let vh_groups =
+            InteractionGroups::new(VH_GROUP, Group32::ALL ^ VH_GROUP, Default::default());
         for (i, s) in plan.segments.iter().enumerate() {
             let rb = if s.parent.is_none() {
                 RigidBodyBuilder::fixed()
@@ -226,8 +227,16 @@ impl World {
         }
         let opp_groups = InteractionGroups::all();
         let mut opponent = [0; 3];
-        let positions = [plan.opponent_head, plan.opponent_gloves[0], plan.opponent_gloves[1]];
-        let radii = [plan.opponent_head_radius, plan.glove_radius, plan.glove_radius];
+        let positions = [
+            plan.opponent_head,
+            plan.opponent_gloves[0],
+            plan.opponent_gloves[1],
+        ];
+        let radii = [
+            plan.opponent_head_radius,
+            plan.glove_radius,
+            plan.glove_radius,
+        ];
         for k in 0..3 {
             let idx = bodies.len();
             let h = phys.insert_body(
@@ -277,7 +286,9 @@ impl World {
         .user_data(idx as u128);
         let h = self.phys.insert_body(rb);
         let c = self.phys.insert_collider(
-            collider_for(p.shape, Vec3::Y).mass(p.mass).user_data(idx as u128),
+            collider_for(p.shape, Vec3::Y)
+                .mass(p.mass)
+                .user_data(idx as u128),
             Some(h),
         );
         self.bodies.push(BodyInfo {
@@ -332,7 +343,9 @@ impl World {
     /// World position of a segment's pivot.
     pub fn pivot(&self, s: usize) -> Vec3 {
         let p = self.plan.segments[s].parent.expect("joint has a parent");
-        self.seg(p).position().transform_point(self.anchor_parent[s])
+        self.seg(p)
+            .position()
+            .transform_point(self.anchor_parent[s])
     }
 
     /// Inertia tensor of segment `s`'s subtree about `point`, world frame.
@@ -345,8 +358,9 @@ impl World {
             let i_local = mp.reconstruct_inertia_matrix();
             let d = rb.center_of_mass() - point;
             let m = rb.mass();
-            let parallel = m * (Mat3::from_diagonal(Vec3::splat(d.length_squared()))
-                - Mat3::from_cols(d * d.x, d * d.y, d * d.z));
+            let parallel = m
+                * (Mat3::from_diagonal(Vec3::splat(d.length_squared()))
+                    - Mat3::from_cols(d * d.x, d * d.y, d * d.z));
             total += r * i_local * r.transpose() + parallel;
         }
         total
@@ -410,7 +424,9 @@ impl World {
     /// True if every dynamic body's pose and velocity are finite.
     pub fn is_finite(&self) -> bool {
         self.phys.bodies.iter().all(|(_, rb)| {
-            rb.translation().is_finite() && rb.rotation().is_finite() && rb.linvel().is_finite()
+            rb.translation().is_finite()
+                && rb.rotation().is_finite()
+                && rb.linvel().is_finite()
                 && rb.angvel().is_finite()
         })
     }
@@ -441,7 +457,12 @@ mod tests {
         // positive pitch turns the forward axis up, positive yaw to the left (+X)
         let f = a.to_quat() * Vec3::Z;
         assert!(f.x > 0.0);
-        let up = JointAngles { pitch: 0.3, ..Default::default() }.to_quat() * Vec3::Z;
+        let up = JointAngles {
+            pitch: 0.3,
+            ..Default::default()
+        }
+        .to_quat()
+            * Vec3::Z;
         assert!(up.y > 0.0);
     }
 
@@ -453,6 +474,10 @@ mod tests {
         assert!(a.yaw.abs() < 1e-9 && a.pitch.abs() < 1e-9);
         let i = w.subtree_inertia(seg::EYE_L, w.pivot(seg::EYE_L));
         let expect = 0.4 * 0.0075 * 0.011f32 * 0.011;
-        assert!((i.x_axis.x - expect).abs() / expect < 1e-3, "{}", i.x_axis.x);
+        assert!(
+            (i.x_axis.x - expect).abs() / expect < 1e-3,
+            "{}",
+            i.x_axis.x
+        );
     }
 }

@@ -78,13 +78,14 @@ pub struct HeadParams {
     /// Steepness of the (M8) sigmoid. Default 7.
     #[serde(deserialize_with = "crate::check::positive")]
     pub steepness: f64,
-    /// `A1`, attention amount at which the head moves least. Default 0.
-    #[serde(deserialize_with = "crate::check::finite")]
+    /// `A1`, attention amount at which the head moves least. Not read from
+    /// files: the simulation copies the personality's `a1` here (one source).
+    #[serde(skip)]
     pub attention_least: f64,
     /// `A2`, attention amount at which the head moves most (must exceed `A1`).
-    /// Default 3 (the 2006 attack/guard amount), so the face amount 1.5 stops
-    /// the head 15 deg short.
-    #[serde(deserialize_with = "crate::check::finite")]
+    /// Copied from the personality's `a2`. Default 3 (the 2006 attack/guard
+    /// amount), so the face amount 1.5 stops the head 15 deg short.
+    #[serde(skip, default = "default_a2")]
     pub attention_most: f64,
     /// Peak head speed at zero amplitude (rad/s). Default 40 deg/s (Pejsa et al.).
     #[serde(deserialize_with = "crate::check::positive")]
@@ -99,6 +100,10 @@ pub struct HeadParams {
     pub min_duration: f64,
     /// Neck range of motion.
     pub limits: NeckLimits,
+}
+
+fn default_a2() -> f64 {
+    3.0
 }
 
 impl Default for HeadParams {
@@ -213,7 +218,11 @@ impl HeadMove {
     pub fn plan(params: &HeadParams, start: DVec2, target: DVec2) -> Self {
         let target = params.limits.clamp(target);
         let amplitude = (target - start).length();
-        Self { start, target, duration: params.duration(amplitude) }
+        Self {
+            start,
+            target,
+            duration: params.duration(amplitude),
+        }
     }
 
     /// Start angles.
@@ -260,7 +269,11 @@ mod tests {
         let params = p();
         let att = deg(60.0);
         // A = A1 -> x = -1; A midway -> x = 0; A = A2 -> x = 1
-        let cases = [(0.0, 30.0 / (1.0 + (-7f64).exp())), (1.5, 15.0), (3.0, 30.0 / (1.0 + 7f64.exp()))];
+        let cases = [
+            (0.0, 30.0 / (1.0 + (-7f64).exp())),
+            (1.5, 15.0),
+            (3.0, 30.0 / (1.0 + 7f64.exp())),
+        ];
         for (a, short_deg) in cases {
             let got = params.amplitude_1d(att, a).to_degrees();
             assert!((got - (60.0 - short_deg)).abs() < 1e-9, "A={a}: {got}");
@@ -312,12 +325,24 @@ mod tests {
     #[test]
     fn start_rule() {
         let params = p();
-        assert!(!params.should_start(deg(15.0), 1.0, false), "15 deg: no head");
-        assert!(!params.should_start(deg(15.0), 1.0, true), "15 deg top-down: no head");
+        assert!(
+            !params.should_start(deg(15.0), 1.0, false),
+            "15 deg: no head"
+        );
+        assert!(
+            !params.should_start(deg(15.0), 1.0, true),
+            "15 deg top-down: no head"
+        );
         assert!(params.should_start(deg(50.0), 0.030, false), "50 deg: head");
-        assert!(!params.should_start(deg(50.0), 0.010, false), "bottom-up waits 20 ms");
+        assert!(
+            !params.should_start(deg(50.0), 0.010, false),
+            "bottom-up waits 20 ms"
+        );
         assert!(params.should_start(deg(50.0), 0.020, false));
-        assert!(params.should_start(deg(50.0), 0.0, true), "top-down may lead");
+        assert!(
+            params.should_start(deg(50.0), 0.0, true),
+            "top-down may lead"
+        );
         assert!(params.should_start(deg(-50.0), 0.03, false));
     }
 
@@ -337,11 +362,17 @@ mod tests {
     #[test]
     fn head_move_follows_m9() {
         let params = p();
-        let (a, b) = (DVec2::new(deg(-10.0), deg(5.0)), DVec2::new(deg(30.0), deg(-20.0)));
+        let (a, b) = (
+            DVec2::new(deg(-10.0), deg(5.0)),
+            DVec2::new(deg(30.0), deg(-20.0)),
+        );
         let mv = HeadMove::plan(&params, a, b);
         assert_eq!(mv.sample(0.0).angles, a);
         assert!((mv.sample(mv.duration()).angles - b).length() < 1e-15);
-        assert_eq!(mv.sample(mv.duration() + 1.0).angles, mv.sample(mv.duration()).angles);
+        assert_eq!(
+            mv.sample(mv.duration() + 1.0).angles,
+            mv.sample(mv.duration()).angles
+        );
         // peak speed at the midpoint equals Vp
         let amp = (b - a).length();
         let vp = mv.sample(0.5 * mv.duration()).rate.length();
@@ -373,12 +404,19 @@ mod tests {
 
     #[test]
     fn params_deserialise() {
-        let h: HeadParams = ron::from_str("(limits: (yaw: 1.0), attention_most: 5.0)").unwrap();
+        let h: HeadParams = ron::from_str("(limits: (yaw: 1.0), eye_lead: 0.04)").unwrap();
         assert_eq!(h.limits.yaw, 1.0);
         assert_eq!(h.limits.pitch_up, NeckLimits::default().pitch_up);
         assert!(h.validate().is_ok());
         assert!(ron::from_str::<HeadParams>("(min_duration: 0.0)").is_err());
-        let bad = HeadParams { attention_most: -1.0, ..p() };
+        assert!(
+            ron::from_str::<HeadParams>("(attention_most: 5.0)").is_err(),
+            "A2 lives in the personality"
+        );
+        let bad = HeadParams {
+            attention_most: -1.0,
+            ..p()
+        };
         assert!(bad.validate().is_err());
     }
 }

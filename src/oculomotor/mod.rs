@@ -21,17 +21,21 @@
 //! positive up (see [`crate::math::dir_from_yaw_pitch`]). Static parameters
 //! (`*Params`) are kept apart from evolving state.
 
+pub mod fixation;
 pub mod head;
 pub mod pursuit;
 pub mod saccade;
+pub mod takagi;
 
 use glam::{DQuat, DVec2, DVec3, Quat, Vec3};
+use rand::Rng;
 use serde::Deserialize;
 
 use crate::control::JointTarget;
-use crate::math::yaw_pitch_of;
+use crate::math::{dir_from_yaw_pitch, yaw_pitch_of};
 use crate::world::JointAngles;
 
+use fixation::{FixationParams, FixationState};
 use head::{HeadMove, HeadParams};
 use pursuit::{BinocularParams, BinocularState, EyeInput, head_rate_from_angular_velocity};
 use saccade::{Saccade, SaccadeParams};
@@ -46,6 +50,8 @@ pub struct OculomotorParams {
     pub pursuit: BinocularParams,
     /// Head movement law.
     pub head: HeadParams,
+    /// Microsaccades and drift while fixating (idle gaze).
+    pub fixation: FixationParams,
 }
 
 /// What the controller needs to know this tick.
@@ -120,10 +126,13 @@ pub struct GazeOutput {
     pub neck: AxisCommand,
 }
 
+/// A gaze saccade: each eye's plan lives in the *world* frame (the line of
+/// sight in space), so a head that turns during the saccade is subtracted
+/// (eye = gaze - head) instead of throwing the eye off target.
 #[derive(Clone, Debug)]
 enum EyeMode {
     Pursuit,
-    Saccade { plans: [Saccade; 2], t0: f64 },
+    Saccade { plans: Box<[Saccade; 2]>, t0: f64 },
 }
 
 /// The controller's evolving state.
@@ -135,6 +144,7 @@ pub struct Oculomotor {
     last_target: Option<u64>,
     eye_onset: f64,
     prev_goal: Option<[DVec2; 2]>,
+    fixation: FixationState,
     out: GazeOutput,
     /// Saccades started so far.
     pub saccades: u32,
@@ -144,8 +154,9 @@ pub struct Oculomotor {
 
 impl Oculomotor {
     /// Eyes and head straight ahead.
-    pub fn new(_p: &OculomotorParams) -> Self {
+    pub fn new(p: &OculomotorParams, rng: &mut impl Rng) -> Self {
         Oculomotor {
+            fixation: FixationState::new(&p.fixation, rng),
             mode: EyeMode::Pursuit,
             pursuit: BinocularState::new(DVec2::ZERO, DVec2::ZERO),
             head: None,
@@ -170,6 +181,7 @@ impl Oculomotor {
         input: &GazeInput,
         t: f64,
         dt: f64,
+        rng: &mut impl Rng,
     ) -> GazeOutput {
         let head_inv = input.head_rot.inverse();
         let range = DVec2::new(p.pursuit.yaw_range, p.pursuit.pitch_range);
@@ -188,14 +200,25 @@ impl Oculomotor {
 
         let prev = self.out;
         let mut eyes = prev.eyes;
+        let world_dir = |a: DVec2| input.head_rot * dir_from_yaw_pitch(a.x, a.y);
         if let EyeMode::Pursuit = self.mode {
             let (l, r) = self.pursuit.angles();
             let err = [goal[0] - l, goal[1] - r];
             let max_err = err[0].length().max(err[1].length());
             let jump = new_target && max_err > p.saccade.end_threshold * 5.0;
             if jump || p.saccade.should_start(max_err) {
-                let plans = [0, 1].map(|k| Saccade::plan(&p.saccade, prev.eyes[k].angles, goal[k]));
-                self.mode = EyeMode::Saccade { plans, t0: t };
+                // Plan in world (yaw, pitch): from where each eye points now
+                // to the gaze point as seen from that eye (M2-M6 along the
+                // great circle).
+                let plans = [0, 1].map(|k| {
+                    let (sy, sp) = yaw_pitch_of(world_dir(prev.eyes[k].angles));
+                    let (gy, gp) = yaw_pitch_of(input.point - input.eye_pos[k]);
+                    Saccade::plan(&p.saccade, DVec2::new(sy, sp), DVec2::new(gy, gp))
+                });
+                self.mode = EyeMode::Saccade {
+                    plans: Box::new(plans),
+                    t0: t,
+                };
                 self.eye_onset = t;
                 self.saccades += 1;
             }
@@ -204,20 +227,27 @@ impl Oculomotor {
             EyeMode::Saccade { plans, t0 } => {
                 let s = t + dt - t0;
                 for k in 0..2 {
-                    let smp = plans[k].sample(s);
-                    eyes[k].angles = smp.angles;
-                    eyes[k].rates = smp.rates;
+                    // eye = gaze - head: the world plan seen from the head now.
+                    let d = head_inv * plans[k].direction(s.min(plans[k].duration()));
+                    let (y, pt) = yaw_pitch_of(d);
+                    let a = DVec2::new(y, pt).clamp(-range, range);
+                    eyes[k].rates = (a - prev.eyes[k].angles) / dt;
+                    eyes[k].angles = a;
                 }
                 if s >= plans[0].duration().max(plans[1].duration()) {
                     self.pursuit.reset(eyes[0].angles, eyes[1].angles);
+                    self.fixation.reset(&p.fixation, rng);
                     self.mode = EyeMode::Pursuit;
                 }
             }
             EyeMode::Pursuit => {
                 let (l, r) = self.pursuit.angles();
+                // Accommodation: each seeing eye knows how far it focuses,
+                // which lets an occluded partner keep converging (pursuit.rs).
                 let inputs = [(goal[0] - l, 0), (goal[1] - r, 1)].map(|(e, k)| {
                     if input.visible[k] {
-                        EyeInput::seen(e, target_rate[k])
+                        let focus = (input.point - input.head_pos).length();
+                        EyeInput::seen(e, target_rate[k]).with_focus(focus)
                     } else {
                         EyeInput::occluded()
                     }
@@ -225,14 +255,16 @@ impl Oculomotor {
                 let w = head_rate_from_angular_velocity(head_inv * input.head_angvel);
                 let (l, r) = self.pursuit.step(&p.pursuit, dt, &inputs[0], &inputs[1], w);
                 let (rl, rr) = self.pursuit.rates();
-                eyes[0].angles = l;
-                eyes[1].angles = r;
-                eyes[0].rates = rl;
-                eyes[1].rates = rr;
+                // Idle gaze: conjugate microsaccades and drift on top.
+                let fix = self.fixation.step(&p.fixation, dt, rng);
+                eyes[0].angles = (l + fix.offset).clamp(-range, range);
+                eyes[1].angles = (r + fix.offset).clamp(-range, range);
+                eyes[0].rates = rl + fix.rate;
+                eyes[1].rates = rr + fix.rate;
             }
         }
-        for k in 0..2 {
-            eyes[k].accel = (eyes[k].rates - prev.eyes[k].rates) / dt;
+        for (eye, before) in eyes.iter_mut().zip(prev.eyes) {
+            eye.accel = (eye.rates - before.rates) / dt;
         }
 
         // Head: start rule, then (M8) amplitude and (M9) trajectory.
@@ -241,9 +273,13 @@ impl Oculomotor {
         let face_fwd = input.head_rot * DVec3::Z;
         let to_point = (input.point - input.head_pos).normalize_or(face_fwd);
         let from_face = face_fwd.angle_between(to_point);
-        let moving = self.head.as_ref().is_some_and(|(m, t0)| t < t0 + m.duration());
+        let moving = self
+            .head
+            .as_ref()
+            .is_some_and(|(m, t0)| t < t0 + m.duration());
         if !moving
-            && p.head.should_start(from_face, t - self.eye_onset, input.top_down)
+            && p.head
+                .should_start(from_face, t - self.eye_onset, input.top_down)
         {
             let (y, pt) = yaw_pitch_of(torso_inv * to_point);
             let target = p.head.target(DVec2::new(y, pt), input.amount);

@@ -192,7 +192,12 @@ impl SaccadeProfile {
 
     /// Position `theta_eye(t)` (rad): 0 before onset, `A` after the end.
     pub fn position(&self, t: f64) -> f64 {
-        let (ar, tr, l, tc) = (self.ramp_amplitude, self.ramp_time, self.cruise_speed, self.cruise_time);
+        let (ar, tr, l, tc) = (
+            self.ramp_amplitude,
+            self.ramp_time,
+            self.cruise_speed,
+            self.cruise_time,
+        );
         let p = if t <= 0.0 {
             0.0
         } else if t >= self.duration {
@@ -336,10 +341,16 @@ impl Saccade {
     /// `start` before onset and exactly `goal` from the end on.
     pub fn sample(&self, t: f64) -> SaccadeSample {
         if t <= 0.0 {
-            return SaccadeSample { angles: self.start, rates: DVec2::ZERO };
+            return SaccadeSample {
+                angles: self.start,
+                rates: DVec2::ZERO,
+            };
         }
         if t >= self.duration() {
-            return SaccadeSample { angles: self.goal, rates: DVec2::ZERO };
+            return SaccadeSample {
+                angles: self.goal,
+                rates: DVec2::ZERO,
+            };
         }
         let d = self.direction(t);
         let d_dot = self.pole.cross(d) * self.profile.velocity(t);
@@ -392,10 +403,17 @@ mod tests {
         for a in [5.0, 10.0, 20.0, 30.0, 40.0] {
             let expected = if a < a_cap { T } else { (a - a_cap) / L + T };
             let got = SaccadeProfile::plan(&seed(), f64::to_radians(a)).duration();
-            assert!((got - expected).abs() < 1e-12, "{a} deg: {got} vs {expected}");
+            println!("seed saccade {a} deg: {:.2} ms", 1e3 * got);
+            assert!(
+                (got - expected).abs() < 1e-12,
+                "{a} deg: {got} vs {expected}"
+            );
         }
         let d40 = SaccadeProfile::plan(&seed(), 40f64.to_radians()).duration();
-        assert!((d40 - 0.1033).abs() < 1e-4, "40 deg is about 103 ms, got {d40}");
+        assert!(
+            (d40 - 0.1033).abs() < 1e-4,
+            "40 deg is about 103 ms, got {d40}"
+        );
     }
 
     #[test]
@@ -420,8 +438,14 @@ mod tests {
             let tf = (a.to_radians() - a_cap) / seed().max_speed + 0.5 * T; // (M4)
             for tj in [0.5 * T, tf] {
                 let (l, r) = (tj - eps, tj + eps);
-                assert!((p.position(l) - p.position(r)).abs() < 1e-7, "pos A={a} at {tj}");
-                assert!((p.velocity(l) - p.velocity(r)).abs() < 1e-5, "vel A={a} at {tj}");
+                assert!(
+                    (p.position(l) - p.position(r)).abs() < 1e-7,
+                    "pos A={a} at {tj}"
+                );
+                assert!(
+                    (p.velocity(l) - p.velocity(r)).abs() < 1e-5,
+                    "vel A={a} at {tj}"
+                );
                 // and the joint is at full speed
                 assert!((p.velocity(l) - seed().max_speed).abs() < 1e-5);
             }
@@ -490,10 +514,20 @@ mod tests {
 
     #[test]
     fn main_sequence_duration_within_ten_percent() {
-        let params = SaccadeParams { law: SaccadeLaw::MainSequence, ..seed() };
+        let params = SaccadeParams {
+            law: SaccadeLaw::MainSequence,
+            ..seed()
+        };
         for a in [0.3, 1.0, 5.0, 10.0, 13.0, 15.0, 20.0, 30.0, 40.0, 60.0] {
             let want = 0.021 + 0.0022 * a;
-            let got = SaccadeProfile::plan(&params, f64::to_radians(a)).duration();
+            let prof = SaccadeProfile::plan(&params, f64::to_radians(a));
+            let got = prof.duration();
+            println!(
+                "main-sequence saccade {a} deg: {:.2} ms (want {:.2}), peak {:.1} deg/s",
+                1e3 * got,
+                1e3 * want,
+                prof.peak_speed().to_degrees()
+            );
             assert!((got - want).abs() <= 0.1 * want, "{a} deg: {got} vs {want}");
         }
     }

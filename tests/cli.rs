@@ -1,0 +1,142 @@
+//! The command line: exit codes and error messages for good and bad input.
+
+use std::path::Path;
+use std::process::Command;
+
+fn shisen(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_shisen"))
+        .args(args)
+        .output()
+        .expect("binary runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn write_scene(name: &str, text: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("shisen-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.to_string_lossy().into_owned()
+}
+
+#[test]
+fn a_passing_scene_exits_zero_and_prints_one_line_per_expectation() {
+    let p = write_scene(
+        "ok.ron",
+        "Scene(duration: 0.3, expect: [Finite, AngleBelow(joint: NeckYaw, max_deg: 70.0)])",
+    );
+    let (code, out, err) = shisen(&["run", &p, "--headless"]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert_eq!(
+        out.lines().filter(|l| l.starts_with("PASS")).count(),
+        2,
+        "{out}"
+    );
+}
+
+#[test]
+fn a_failing_expectation_exits_one() {
+    let p = write_scene(
+        "fail.ron",
+        "Scene(duration: 0.3, expect: [GazeShare(target: \"left_glove\", from: 0.0, to: 0.3, at_least: 0.9)])",
+    );
+    let (code, out, _) = shisen(&["run", &p, "--headless"]);
+    assert_eq!(code, 1, "{out}");
+    assert!(out.contains("FAIL"), "{out}");
+}
+
+/// Each bad file exits 2 with `file:line:col: field: message` and runs nothing.
+#[test]
+fn broken_scenes_name_file_line_and_field() {
+    let cases = [
+        (
+            "syntax.ron",
+            "Scene(\n  duration: 1.0,\n  timeline: [ (at: 1.0 ]\n)",
+            ":3:",
+            "-",
+        ),
+        (
+            "unknown.ron",
+            "Scene(\n  duration: 1.0,\n  sed: 4,\n)",
+            ":3:",
+            "sed",
+        ),
+        (
+            "nan.ron",
+            "Scene(\n  duration: 1.0,\n  timeline: [\n    (at: 0.2, do: Punch(hand: Left, target: Head, speed: NaN)),\n  ],\n)",
+            ":4:",
+            "timeline[0].do.Punch.speed",
+        ),
+        (
+            "gain.ron",
+            "Scene(\n  duration: 1.0,\n  gains: Gains(\n    eye: (kp: 0.03, kd: 0.0002),\n    neck: (kp: -150.0, kd: 8.0),\n    shoulder: (kp: 300.0, kd: 20.0),\n    elbow: (kp: 60.0, kd: 3.5),\n  ),\n)",
+            ":5:",
+            "gains.neck.kp",
+        ),
+        (
+            "range.ron",
+            "Scene(\n  duration: 1.0,\n  expect: [\n    GazeShare(target: \"head\", from: 0.0, to: 1.0, at_least: 1.5),\n  ],\n)",
+            ":4:",
+            "at_least",
+        ),
+    ];
+    for (name, text, line, field) in cases {
+        let p = write_scene(name, text);
+        let (code, out, err) = shisen(&["run", &p, "--headless"]);
+        assert_eq!(code, 2, "{name}: {out}{err}");
+        assert!(
+            err.contains(&format!("{p}{line}")),
+            "{name}: no file:line in {err}"
+        );
+        assert!(
+            err.contains(field),
+            "{name}: field `{field}` not named in {err}"
+        );
+        assert!(
+            !out.contains("PASS") && !out.contains("simulated"),
+            "{name} ran: {out}"
+        );
+    }
+}
+
+#[test]
+fn a_missing_file_is_reported() {
+    let (code, _, err) = shisen(&["run", "/nonexistent/scene.ron", "--headless"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("/nonexistent/scene.ron"), "{err}");
+}
+
+#[test]
+fn trace_has_the_documented_header() {
+    let dir = std::env::temp_dir().join(format!("shisen-trace-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let trace = dir.join("t.csv");
+    let p = write_scene("t.ron", "Scene(duration: 0.05)");
+    let (code, _, err) = shisen(&[
+        "run",
+        &p,
+        "--headless",
+        "--trace",
+        trace.to_str().unwrap(),
+        "--trace-every",
+        "10",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&trace).unwrap();
+    let header = text.lines().next().unwrap();
+    assert_eq!(header, shisen::trace::header());
+    assert_eq!(text.lines().count(), 1 + 5, "50 ticks, every 10th");
+    // every column is documented in the README
+    let readme =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
+    for col in shisen::trace::column_names() {
+        assert!(
+            readme.contains(&format!("`{col}`")),
+            "README does not document column `{col}`"
+        );
+    }
+}
