@@ -52,7 +52,10 @@ pub fn parse_ron<T: DeserializeOwned>(text: &str, file: &Path) -> Result<T, Load
         field,
         message,
     };
-    let mut de = ron::Deserializer::from_str(text).map_err(|e| {
+    // Optional fields are written plainly (`gains: Gains(...)`, not `Some(...)`).
+    let options =
+        ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
+    let mut de = ron::Deserializer::from_str_with_options(text, &options).map_err(|e| {
         invalid(
             e.span.start.line,
             e.span.start.col,
