@@ -8,7 +8,8 @@
 //! [`vision`] (visible bodies, saliency M1) -> [`behaviour`] (guard /
 //! attack / idle) -> [`attention`] (arbitration) -> [`oculomotor`]
 //! (saccades M2-M6, pursuit/vergence/VOR M7, head M8-M9) -> [`control`]
-//! (PD joints). [`sim`] runs the tick; [`scene`] reads scene files;
+//! (PD joints), with [`face`] beside them (muscle-driven face, F1-F8).
+//! [`sim`] runs the tick; [`scene`] reads scene files;
 //! [`trace`] and [`expect`] record and judge headless runs.
 
 pub mod attention;
@@ -17,6 +18,7 @@ pub mod body;
 pub mod check;
 pub mod control;
 pub mod expect;
+pub mod face;
 pub mod headless;
 pub mod math;
 pub mod metrics;

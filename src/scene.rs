@@ -155,6 +155,27 @@ pub struct VhParams {
     pub attention: crate::attention::AttentionParams,
     /// Saccade, pursuit and head laws.
     pub oculomotor: crate::oculomotor::OculomotorParams,
+    /// The face.
+    pub face: FaceConfig,
+}
+
+/// Face settings of a scene (`vh.face`).
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct FaceConfig {
+    /// Mesh resolution: latitude bands (vertices ~ 2 rows^2; 32 ~ 2k, 160 ~ 51k).
+    #[serde(deserialize_with = "face_rows")]
+    pub rows: usize,
+}
+
+impl Default for FaceConfig {
+    fn default() -> Self {
+        FaceConfig { rows: 48 }
+    }
+}
+
+fn face_rows<'de, D: serde::Deserializer<'de>>(d: D) -> Result<usize, D::Error> {
+    crate::check::in_range(d, 24.0, 400.0).map(|v| v as usize)
 }
 
 /// The opponent's hands.
@@ -228,6 +249,21 @@ pub enum Action {
         #[serde(deserialize_with = "crate::check::positive")]
         duration: f64,
     },
+    /// Change the facial expression (face.md 7): from the current values to
+    /// `emotion` at `intensity`, over the table 5.9/5.10 duration at `speed`.
+    Emotion {
+        /// One of the 35 emotions of table A (`Neutral`, `Happiness`, ...).
+        emotion: crate::face::tables::Emotion,
+        /// Intensity, 0-1.
+        #[serde(default = "one", deserialize_with = "crate::check::unit_interval")]
+        intensity: f64,
+        /// `Fast`, `Typical` or `Slow` (the thesis's speeds 1, 2, 3).
+        #[serde(default)]
+        speed: crate::face::timing::Speed,
+        /// Onset/offset shape `I`..`V` (default `III`, the thesis's choice).
+        #[serde(default)]
+        pattern: crate::face::timing::Pattern,
+    },
     /// Override the gaze: look at a world point until a time.
     LookAt {
         /// The point, world metres.
@@ -286,6 +322,10 @@ pub struct BodySpec {
     /// Whether gravity acts on a dynamic prop.
     #[serde(default = "yes")]
     pub gravity: bool,
+}
+
+fn one() -> f64 {
+    1.0
 }
 
 fn default_mass() -> f64 {

@@ -11,6 +11,10 @@ use crate::attention::{Attention, GazeChoice, Source};
 use crate::behaviour::{Behaviour, OpponentView, arm_ik};
 use crate::body::{BodyPlan, Shape, seg};
 use crate::control::{Gains, JointTarget};
+use crate::face::mesh::MeshParams;
+use crate::face::params::FaceParams;
+use crate::face::tables::Emotion;
+use crate::face::{Face, FaceState};
 use crate::oculomotor::{GazeInput, Oculomotor};
 use crate::scene::{Action, ActionKind, Hand, LoadedScene, Part, PropShape, PunchTarget, Scene};
 use crate::script::Track;
@@ -61,6 +65,10 @@ pub struct Sample {
     pub punching: bool,
     /// Opponent gloves touching the VH's head this tick.
     pub head_hit: bool,
+    /// The face's current (target) emotion.
+    pub emotion: Emotion,
+    /// Upper-lid closure of the blink, 0 open to 1 shut.
+    pub blink: f64,
 }
 
 /// Independent random streams, one per consumer, all derived from the
@@ -68,6 +76,7 @@ pub struct Sample {
 struct Streams {
     behaviour: StdRng,
     oculomotor: StdRng,
+    face: StdRng,
 }
 
 impl Streams {
@@ -76,6 +85,7 @@ impl Streams {
         Streams {
             behaviour: derive(1),
             oculomotor: derive(2),
+            face: derive(3),
         }
     }
 }
@@ -98,6 +108,10 @@ pub struct Sim {
     pub behaviour: Behaviour,
     /// Eye and head control state.
     pub oculomotor: Oculomotor,
+    /// The face model (mesh, muscles, database).
+    pub face: Face,
+    /// The face's evolving state (expression, blinks).
+    pub face_state: FaceState,
     look_at: Option<(DVec3, f64)>,
     seen: Vec<Seen>,
     targets: Vec<JointTarget>,
@@ -157,7 +171,15 @@ impl Sim {
             targets[base + 1].rotation = e;
         }
         let mut rng = Streams::new(scene.seed);
+        let face = Face::new(
+            MeshParams {
+                rows: scene.vh.face.rows,
+            },
+            FaceParams::default_params(),
+        );
         Sim {
+            face,
+            face_state: FaceState::default(),
             oculomotor: Oculomotor::new(&scene.vh.oculomotor, &mut rng.oculomotor),
             rng,
             gains: loaded.gains.clone(),
@@ -266,6 +288,18 @@ impl Sim {
                     }
                 }
                 Action::LookAt { point, until } => self.look_at = Some((point, until)),
+                Action::Emotion {
+                    emotion,
+                    intensity,
+                    speed,
+                    pattern,
+                } => self.face_state.set_emotion(
+                    &self.face,
+                    emotion,
+                    intensity as f32,
+                    speed,
+                    pattern,
+                ),
             }
         }
     }
@@ -361,6 +395,14 @@ impl Sim {
         for (k, s) in [seg::EYE_L, seg::EYE_R].into_iter().enumerate() {
             self.targets[s] = out.eyes[k].joint_target();
         }
+
+        // Face: lids follow the eyes' pitch; a large gaze shift may blink.
+        if let Some(amplitude) = self.oculomotor.saccade_started() {
+            self.face_state
+                .gaze_shift(&self.face, amplitude.to_degrees(), &mut self.rng.face);
+        }
+        self.face_state.eye_pitch = input.eye_angles.map(|a| a.y as f32);
+        self.face_state.step(&self.face, dt, &mut self.rng.face);
         self.targets[seg::HEAD] = out.neck.joint_target();
 
         // Arms: inverse kinematics of the planned glove positions; the
@@ -454,6 +496,8 @@ impl Sim {
             finite: w.is_finite(),
             punching: self.behaviour.punching(),
             head_hit,
+            emotion: self.face_state.emotion,
+            blink: self.face_state.blink.closure(&self.face.params.blink),
         }
     }
 }

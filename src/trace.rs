@@ -56,6 +56,10 @@ const COLUMNS: &[(&str, Cell)] = &[
     ("head_hit", |s, o| {
         o.push_str(if s.head_hit { "1" } else { "0" })
     }),
+    ("emotion", |s, o| {
+        let _ = write!(o, "{:?}", s.emotion);
+    }),
+    ("blink", |s, o| num(o, s.blink)),
     ("salient_1", |s, o| top(o, s, 0)),
     ("salient_2", |s, o| top(o, s, 1)),
     ("salient_3", |s, o| top(o, s, 2)),

@@ -148,6 +148,7 @@ pub struct Oculomotor {
     out: GazeOutput,
     /// Saccades started so far.
     pub saccades: u32,
+    started: Option<f64>,
     /// Head movements started so far.
     pub head_moves: u32,
 }
@@ -165,8 +166,14 @@ impl Oculomotor {
             prev_goal: None,
             out: GazeOutput::default(),
             saccades: 0,
+            started: None,
             head_moves: 0,
         }
+    }
+
+    /// The amplitude (rad) of a saccade that started in the last step.
+    pub fn saccade_started(&self) -> Option<f64> {
+        self.started
     }
 
     /// True while a saccade is being executed.
@@ -200,6 +207,7 @@ impl Oculomotor {
 
         let prev = self.out;
         let mut eyes = prev.eyes;
+        self.started = None;
         let world_dir = |a: DVec2| input.head_rot * dir_from_yaw_pitch(a.x, a.y);
         if let EyeMode::Pursuit = self.mode {
             let (l, r) = self.pursuit.angles();
@@ -221,6 +229,7 @@ impl Oculomotor {
                 };
                 self.eye_onset = t;
                 self.saccades += 1;
+                self.started = Some(plans[0].amplitude().max(plans[1].amplitude()));
             }
         }
         match &self.mode {

@@ -1,0 +1,224 @@
+//! Measured, user-editable parameters: table D, the influence table, the
+//! blink constants and the onset/offset durations, read from RON
+//! (`scenes/face/muscles.ron`, embedded as the default).
+
+use super::FaceError;
+use super::tables::{ActionUnit, Expression, MuscleKind};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// The default parameter file, embedded at compile time.
+pub const DEFAULT_RON: &str = include_str!("../../scenes/face/muscles.ron");
+
+/// Influence parameters of one linear muscle (face.md influence table).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Influence {
+    /// Cone half-angle B in degrees.
+    #[serde(deserialize_with = "crate::check::positive")]
+    pub cone_deg: f64,
+    /// rf / rs (> 1).
+    #[serde(deserialize_with = "crate::check::positive")]
+    pub rf_ratio: f64,
+}
+
+/// Blink constants (face.md 6 and table D note).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BlinkParams {
+    /// AU45 upper palpebral contraction at full closure (2.9).
+    #[serde(deserialize_with = "crate::check::positive")]
+    pub contraction: f64,
+    /// Closing time, seconds (0.080).
+    #[serde(deserialize_with = "crate::check::positive")]
+    pub close_s: f64,
+    /// Opening time, seconds (0.120).
+    #[serde(deserialize_with = "crate::check::positive")]
+    pub open_s: f64,
+    /// Inverse Gaussian mean mu, seconds (4.0).
+    #[serde(deserialize_with = "crate::check::positive")]
+    pub mean_interval_s: f64,
+    /// Inverse Gaussian shape lambda, seconds (13.94).
+    #[serde(deserialize_with = "crate::check::positive")]
+    pub shape_s: f64,
+    /// Spontaneous blinks only while the face is neutral (thesis).
+    pub neutral_only: bool,
+    /// Gaze shifts smaller than this never trigger a blink (degrees).
+    #[serde(deserialize_with = "crate::check::non_negative")]
+    pub gaze_trigger_min_deg: f64,
+    /// Gaze shifts at least this large always trigger a blink (degrees).
+    #[serde(deserialize_with = "crate::check::positive")]
+    pub gaze_trigger_max_deg: f64,
+    /// Upper-lid vertical travel per unit of eyeball vertical travel
+    /// (lid follows the eye's pitch).
+    #[serde(deserialize_with = "crate::check::non_negative")]
+    pub lid_follow_gain: f64,
+}
+
+/// Slow and fast bounds of a duration (tables 5.9, 5.10), seconds.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DurationBounds {
+    /// Slow bound (speed 3).
+    #[serde(deserialize_with = "crate::check::positive")]
+    pub upper: f64,
+    /// Fast bound (speed 1).
+    #[serde(deserialize_with = "crate::check::positive")]
+    pub lower: f64,
+}
+
+impl DurationBounds {
+    /// Typical = exp((ln upper + ln lower) / 2) (face.md 7).
+    pub fn typical(&self) -> f64 {
+        (self.upper * self.lower).sqrt()
+    }
+}
+
+/// All measured face parameters.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FaceParams {
+    /// Table D: per expression, muscle -> contraction (Jaw in degrees).
+    pub expressions: BTreeMap<Expression, BTreeMap<MuscleKind, f64>>,
+    /// Influence table per linear muscle.
+    pub influence: BTreeMap<MuscleKind, Influence>,
+    /// Blink constants.
+    pub blink: BlinkParams,
+    /// Table 5.9: neutral -> expression.
+    pub onset: BTreeMap<Expression, DurationBounds>,
+    /// Table 5.10 (group 1): expression -> neutral.
+    pub offset: BTreeMap<Expression, DurationBounds>,
+    /// Table 5.10 group 2 where it differs.
+    #[serde(default)]
+    pub offset_group2: BTreeMap<Expression, DurationBounds>,
+}
+
+impl FaceParams {
+    /// Parse and validate a RON parameter file.
+    pub fn from_ron(text: &str) -> Result<Self, FaceError> {
+        Self::parse(text, std::path::Path::new("<muscle database>"))
+    }
+
+    /// Parse and validate a muscle database file; errors name the file,
+    /// line, column and field.
+    pub fn parse(text: &str, file: &std::path::Path) -> Result<Self, FaceError> {
+        let p: FaceParams = crate::scene::parse_ron(text, file)?;
+        p.validate()?;
+        Ok(p)
+    }
+
+    /// The embedded default (`scenes/face/muscles.ron`).
+    pub fn default_params() -> Self {
+        Self::from_ron(DEFAULT_RON).expect("embedded scenes/face/muscles.ron is valid")
+    }
+
+    fn validate(&self) -> Result<(), FaceError> {
+        let bad = |m: String| Err(FaceError::Invalid(m));
+        for e in Expression::BASIC {
+            if !self.onset.contains_key(&e) || !self.offset.contains_key(&e) {
+                return bad(format!("missing onset/offset durations for {e:?}"));
+            }
+        }
+        for (e, row) in &self.expressions {
+            if *e == Expression::Neutral && !row.is_empty() {
+                return bad("Neutral must not drive muscles".into());
+            }
+            for (m, k) in row {
+                if !k.is_finite() {
+                    return bad(format!("{e:?}.{m:?}: must be finite, got {k}"));
+                }
+            }
+        }
+        for m in MuscleKind::ALL.iter().filter(|m| m.is_linear()) {
+            match self.influence.get(m) {
+                None => return bad(format!("influence: missing {m:?}")),
+                Some(i) if i.rf_ratio <= 1.0 => {
+                    return bad(format!("influence.{m:?}.rf_ratio must be > 1"));
+                }
+                Some(i) if i.cone_deg >= 180.0 => {
+                    return bad(format!("influence.{m:?}.cone_deg must be < 180"));
+                }
+                _ => {}
+            }
+        }
+        if self.blink.gaze_trigger_max_deg <= self.blink.gaze_trigger_min_deg {
+            return bad("blink.gaze_trigger_max_deg must exceed gaze_trigger_min_deg".into());
+        }
+        Ok(())
+    }
+
+    /// Table D value, if the expression uses the muscle.
+    pub fn table_d(&self, e: Expression, m: MuscleKind) -> Option<f64> {
+        self.expressions
+            .get(&e)
+            .and_then(|row| row.get(&m))
+            .copied()
+    }
+
+    /// Full-strength value of muscle `m` under direct control of `au`: the
+    /// table D value of largest magnitude among the expressions that use
+    /// the AU (AU45: the blink contraction). `None` if no expression gives one.
+    pub fn au_reference(&self, au: ActionUnit, m: MuscleKind) -> Option<f64> {
+        if au == ActionUnit::Au45 {
+            return Some(self.blink.contraction);
+        }
+        Expression::BASIC
+            .iter()
+            .filter(|e| super::tables::expression_aus(**e).contains(&au))
+            .filter_map(|e| self.table_d(*e, m))
+            .max_by(|a, b| a.abs().total_cmp(&b.abs()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_parses_and_typical_matches_printed() {
+        let p = FaceParams::default_params();
+        assert_eq!(
+            p.table_d(Expression::Surprise, MuscleKind::OculiUpperPalpebral),
+            Some(-0.48)
+        );
+        assert_eq!(p.table_d(Expression::Anger, MuscleKind::Jaw), Some(3.5));
+        // Printed typical columns of tables 5.9 / 5.10.
+        let on = [
+            (Expression::Happiness, 0.60),
+            (Expression::Surprise, 0.40),
+            (Expression::Anger, 0.50),
+            (Expression::Sadness, 0.78),
+            (Expression::Fear, 0.63),
+            (Expression::Disgust, 0.63),
+        ];
+        for (e, t) in on {
+            assert!((p.onset[&e].typical() - t).abs() < 0.006, "{e:?}");
+        }
+        let off = [
+            (Expression::Happiness, 0.63),
+            (Expression::Surprise, 0.71),
+            (Expression::Anger, 1.70),
+            (Expression::Sadness, 1.31),
+            (Expression::Fear, 1.43),
+            (Expression::Disgust, 0.97),
+        ];
+        for (e, t) in off {
+            assert!((p.offset[&e].typical() - t).abs() < 0.006, "{e:?}");
+        }
+        assert!((p.offset_group2[&Expression::Sadness].typical() - 3.95).abs() < 0.006);
+        assert_eq!(
+            p.au_reference(ActionUnit::Au5, MuscleKind::OculiUpperPalpebral),
+            Some(-0.48)
+        );
+        assert_eq!(
+            p.au_reference(ActionUnit::Au45, MuscleKind::OculiUpperPalpebral),
+            Some(2.9)
+        );
+    }
+
+    #[test]
+    fn invalid_values_are_rejected_with_position() {
+        let bad = DEFAULT_RON.replace("close_s: 0.080", "close_s: -0.080");
+        let e = FaceParams::from_ron(&bad).unwrap_err().to_string();
+        assert!(e.contains("must be > 0"), "{e}");
+        assert!(e.contains("close_s"), "the field is named: {e}");
+        let bad = DEFAULT_RON.replace("rf_ratio: 1.3)", "rf_ratio: 0.9)");
+        assert!(FaceParams::from_ron(&bad).is_err());
+    }
+}

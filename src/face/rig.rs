@@ -1,0 +1,268 @@
+//! Muscle placement on the generated head and the precomputed sparse
+//! displacement fields (face.md 3-5).
+//!
+//! (F1) and (F6) are linear in k, so each muscle channel stores its
+//! displacement at k = 1 for the vertices it moves. The jaw (F7) is a
+//! rotation: per vertex we store `alpha / theta` and the rest offset from
+//! the jaw axis, and rotate at frame time with 7th-order sin / 6th-order cos
+//! polynomials (error < a^7/5040: below 1e-7 rad-equivalent for a < 0.35 rad
+//! = 20 deg, i.e. exact for practical purposes, without a sin/cos per vertex).
+//!
+//! Eyelids: the palpebral parts act on their own lid only (upper: rest y
+//! above the eye centre, lower: below), their ellipses are placed so the
+//! eye corners lie at rho >= 2 (corners fixed) and AU45 at 2.9 brings the
+//! upper rim to just below the lower rim's height. After summing, lid-zone
+//! vertices are pushed out of a sphere of `LID_CLEARANCE` around each
+//! eyeball centre, so the lids slide over the eyeball rather than through it
+//! (a documented non-linear post-step).
+
+use super::emotion::{Activation, MuscleId, N_CHANNELS, Side, channels};
+use super::mesh::{HeadMesh, Landmarks, dims, mirror};
+use super::muscle::{Jaw, LinearMuscle, Sphincter, SphincterPart};
+use super::params::FaceParams;
+use super::tables::MuscleKind;
+use glam::Vec3;
+
+/// Radius around each eyeball centre that lid vertices are kept outside of.
+pub const LID_CLEARANCE: f32 = dims::EYEBALL_R + 0.0006;
+
+/// Muscle geometry of one channel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MuscleGeometry {
+    /// Waters linear muscle.
+    Linear(LinearMuscle),
+    /// Waters sphincter, with an optional rest-height mask (palpebral parts:
+    /// act only above / below the eye centre).
+    Sphincter(Sphincter),
+}
+
+/// Displacement per unit contraction of the vertices a channel moves.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct SparseField {
+    /// Vertex indices.
+    pub index: Vec<u32>,
+    /// Displacement at k = 1 of each listed vertex.
+    pub delta: Vec<Vec3>,
+}
+
+/// Precomputed jaw data (F7).
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct JawField {
+    /// Vertex indices below the mouth-ear line with alpha > 0.
+    pub index: Vec<u32>,
+    /// Rest position minus the pivot (the axis is +X).
+    pub offset: Vec<Vec3>,
+    /// alpha / theta.
+    pub fraction: Vec<f32>,
+}
+
+/// Placed muscles and their fields.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rig {
+    /// Geometry per channel (index: [`channels`]).
+    pub muscles: Vec<(MuscleId, MuscleGeometry)>,
+    /// Field per channel.
+    pub fields: Vec<SparseField>,
+    /// Jaw law parameters.
+    pub jaw: Jaw,
+    /// Jaw per-vertex data.
+    pub jaw_field: JawField,
+    /// Upper-rim mid vertex y displacement per unit upper-palpebral k, per eye.
+    pub lid_y_per_k: [f32; 2],
+}
+
+fn place(id: MuscleId, l: &Landmarks, p: &FaceParams) -> MuscleGeometry {
+    use MuscleKind::*;
+    let m = |v: Vec3| if id.side == Side::Right { mirror(v) } else { v };
+    let ex = if id.side == Side::Right {
+        -dims::EYE_X
+    } else {
+        dims::EYE_X
+    };
+    let gap = l.upper_lid_mid.y - l.lower_lid_mid.y;
+    let fissure = l.eye_outer_corner.x - l.eye_inner_corner.x;
+    let sph = |centre: Vec3, lx: f32, ly: f32, part| {
+        MuscleGeometry::Sphincter(Sphincter {
+            centre,
+            axis_x: Vec3::X,
+            axis_y: Vec3::Y,
+            lx,
+            ly,
+            part,
+        })
+    };
+    let (v1, v2) = match id.kind {
+        FrontalisInner => (l.forehead_inner, l.brow_inner),
+        FrontalisMiddle => (l.forehead_mid, l.brow_mid),
+        FrontalisOuter => (l.forehead_outer, l.brow_outer),
+        Corrugator => (l.orbit_inner_upper, l.brow_mid),
+        Procerus => (l.nasal_bone, l.glabella),
+        LevatorAlaequeNasi => (l.orbit_inner_lower, l.nostril_wing),
+        LevatorLabiiSuperioris => (l.orbit_lower, l.upper_lip),
+        ZygomaticMajor => (l.cheekbone, l.mouth_corner),
+        Risorius => (l.face_side, l.mouth_corner),
+        DepressorAnguliOris => (l.jaw_lower_edge, l.mouth_corner),
+        DepressorLabiiInferioris => (l.jaw_outer, l.lower_lip),
+        // Upper palpebral: centre at the lower rim's height, ring 1/1.614 of
+        // the gap, so AU45 (2kf = 1.12 at the mid rim) closes the eye.
+        OculiUpperPalpebral => {
+            return sph(
+                Vec3::new(ex, l.lower_lid_mid.y, 0.0),
+                0.25 * fissure,
+                gap / 1.614,
+                SphincterPart::Upper,
+            );
+        }
+        OculiLowerPalpebral => {
+            return sph(
+                Vec3::new(ex, l.upper_lid_mid.y, 0.0),
+                0.25 * fissure,
+                gap / 1.65,
+                SphincterPart::Lower,
+            );
+        }
+        OculiOrbital => return sph(Vec3::new(ex, 0.0, 0.0), 0.020, 0.016, SphincterPart::Lower),
+        OrbicularisOris => return sph(l.mouth_centre, 0.022, 0.013, SphincterPart::Full),
+        Jaw => unreachable!("the jaw is not a channel"),
+    };
+    let inf = p.influence[&id.kind];
+    MuscleGeometry::Linear(LinearMuscle {
+        v1: m(v1),
+        v2: m(v2),
+        cone_half_angle: (inf.cone_deg as f32).to_radians(),
+        rf_ratio: inf.rf_ratio as f32,
+    })
+}
+
+impl Rig {
+    /// Place every muscle on the mesh's landmarks and precompute the fields.
+    pub fn build(mesh: &HeadMesh, params: &FaceParams) -> Rig {
+        let l = &mesh.landmarks;
+        let mut muscles = Vec::with_capacity(N_CHANNELS);
+        let mut fields = Vec::with_capacity(N_CHANNELS);
+        for id in channels() {
+            let g = place(id, l, params);
+            let mut f = SparseField::default();
+            let eye_x = if id.side == Side::Right {
+                -dims::EYE_X
+            } else {
+                dims::EYE_X
+            };
+            for (i, &p) in mesh.positions.iter().enumerate() {
+                // Palpebral parts act on their own lid only.
+                let masked = match id.kind {
+                    MuscleKind::OculiUpperPalpebral => p.y <= 0.0 || p.z < 0.0,
+                    MuscleKind::OculiLowerPalpebral => p.y >= 0.0 || p.z < 0.0,
+                    MuscleKind::OculiOrbital => p.z < 0.0 || (p.x - eye_x).abs() > 0.05,
+                    MuscleKind::OrbicularisOris => p.z < -0.02,
+                    _ => false,
+                };
+                if masked {
+                    continue;
+                }
+                let d = match g {
+                    MuscleGeometry::Linear(m) => m.displacement(p, 1.0),
+                    MuscleGeometry::Sphincter(s) => s.displacement(p, 1.0),
+                };
+                if d != Vec3::ZERO {
+                    f.index.push(i as u32);
+                    f.delta.push(d);
+                }
+            }
+            muscles.push((id, g));
+            fields.push(f);
+        }
+        let jaw = Jaw {
+            pivot: Vec3::new(0.0, l.jaw_pivot.y, l.jaw_pivot.z),
+            axis: Vec3::X,
+            mouth_corner: l.mouth_corner,
+            ear_lobe: l.ear_lobe,
+            half_mouth_width: l.mouth_corner.x,
+            jaw_half_width: l.jaw_half_width,
+        };
+        let mut jaw_field = JawField::default();
+        for (i, &p) in mesh.positions.iter().enumerate() {
+            let fr = jaw.fraction(p);
+            if fr > 0.0 {
+                jaw_field.index.push(i as u32);
+                jaw_field.offset.push(p - jaw.pivot);
+                jaw_field.fraction.push(fr);
+            }
+        }
+        let mut lid_y_per_k = [0.0; 2];
+        for (e, side) in [Side::Left, Side::Right].into_iter().enumerate() {
+            let rim = &mesh.rims.upper_lid[e];
+            let mid = rim[rim.len() / 2];
+            let ch = MuscleId {
+                kind: MuscleKind::OculiUpperPalpebral,
+                side,
+            }
+            .index()
+            .expect("channel");
+            let f = &fields[ch];
+            lid_y_per_k[e] = f
+                .index
+                .iter()
+                .position(|&i| i == mid)
+                .map_or(0.0, |n| f.delta[n].y);
+        }
+        Rig {
+            muscles,
+            fields,
+            jaw,
+            jaw_field,
+            lid_y_per_k,
+        }
+    }
+
+    /// Upper-palpebral contraction that moves the upper rim by
+    /// `gain * eyeball radius * sin(pitch)` (the lid follows the eye's
+    /// vertical rotation; pitch positive up), for eye `e` (0 left, 1 right).
+    pub fn lid_follow_k(&self, e: usize, pitch: f32, gain: f32) -> f32 {
+        let c = self.lid_y_per_k[e];
+        if c == 0.0 {
+            0.0
+        } else {
+            gain * dims::EYEBALL_R * pitch.sin() / c
+        }
+    }
+
+    /// Deformed positions: rest + sum k_m field_m (F1, F6 linear in k) +
+    /// jaw rotation (F7), then the lid clearance step. `out.len()` must
+    /// equal the vertex count. No allocation.
+    pub fn deform(&self, mesh: &HeadMesh, a: &Activation, out: &mut [Vec3]) {
+        out.copy_from_slice(&mesh.positions);
+        for (k, f) in a.k.iter().zip(&self.fields) {
+            if *k == 0.0 {
+                continue;
+            }
+            for (&i, d) in f.index.iter().zip(&f.delta) {
+                out[i as usize] += *k * *d;
+            }
+        }
+        let theta = a.jaw_deg.to_radians();
+        if theta != 0.0 {
+            let jf = &self.jaw_field;
+            for ((&i, r), fr) in jf.index.iter().zip(&jf.offset).zip(&jf.fraction) {
+                let x = theta * fr;
+                let x2 = x * x;
+                let s = x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0)));
+                let c = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0));
+                // Rotation about +X by alpha (F7): chin down for alpha > 0.
+                let d = Vec3::new(0.0, r.y * (c - 1.0) - r.z * s, r.y * s + r.z * (c - 1.0));
+                out[i as usize] += d;
+            }
+        }
+        for (e, zone) in mesh.lid_zone.iter().enumerate() {
+            let centre = Vec3::new(if e == 0 { dims::EYE_X } else { -dims::EYE_X }, 0.0, 0.0);
+            for &i in zone {
+                let p = &mut out[i as usize];
+                let r = *p - centre;
+                let len = r.length();
+                if len < LID_CLEARANCE && len > 0.0 {
+                    *p = centre + r * (LID_CLEARANCE / len);
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,426 @@
+//! The categorical tables A, B, C of face.md: emotions -> region
+//! expressions -> Action Units -> muscles.
+//!
+//! They are Rust consts, not data: they are the structure of the model
+//! (FACS definitions and the thesis's emotion classification), not measured
+//! values, and as consts the compiler checks that every emotion, AU and
+//! muscle is covered. The measured numbers (table D, influence parameters,
+//! blink and durations) are data in `scenes/face/muscles.ron` (see `params.rs`).
+
+use serde::{Deserialize, Serialize};
+
+/// Face regions (face.md 2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub enum Region {
+    /// Brows and forehead.
+    Upper,
+    /// Eyes and root of the nose.
+    Middle,
+    /// Mouth, cheeks and jaw.
+    Lower,
+}
+
+impl Region {
+    /// All regions, top to bottom.
+    pub const ALL: [Region; 3] = [Region::Upper, Region::Middle, Region::Lower];
+}
+
+/// The basic expressions shown by one region (table A letters).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub enum Expression {
+    /// N.
+    Neutral,
+    /// H.
+    Happiness,
+    /// Su.
+    Surprise,
+    /// F.
+    Fear,
+    /// Sa.
+    Sadness,
+    /// D.
+    Disgust,
+    /// A.
+    Anger,
+}
+
+impl Expression {
+    /// The six non-neutral basic expressions (table D column order).
+    pub const BASIC: [Expression; 6] = [
+        Expression::Happiness,
+        Expression::Surprise,
+        Expression::Fear,
+        Expression::Sadness,
+        Expression::Disgust,
+        Expression::Anger,
+    ];
+}
+
+/// Facial Action Units used by the model (tables B, C).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub enum ActionUnit {
+    /// Inner brow raiser.
+    Au1,
+    /// Outer brow raiser.
+    Au2,
+    /// Brow lowerer.
+    Au4,
+    /// Upper lid raiser.
+    Au5,
+    /// Cheek raiser.
+    Au6,
+    /// Lid tightener.
+    Au7,
+    /// Nose wrinkler.
+    Au9,
+    /// Upper lip raiser.
+    Au10,
+    /// Lip corner puller.
+    Au12,
+    /// Lip corner depressor.
+    Au15,
+    /// Lower lip depressor.
+    Au16,
+    /// Lip stretcher.
+    Au20,
+    /// Lip tightener.
+    Au23,
+    /// Jaw drop.
+    Au26,
+    /// Blink.
+    Au45,
+}
+
+impl ActionUnit {
+    /// All AUs in FACS order.
+    pub const ALL: [ActionUnit; 15] = [
+        ActionUnit::Au1,
+        ActionUnit::Au2,
+        ActionUnit::Au4,
+        ActionUnit::Au5,
+        ActionUnit::Au6,
+        ActionUnit::Au7,
+        ActionUnit::Au9,
+        ActionUnit::Au10,
+        ActionUnit::Au12,
+        ActionUnit::Au15,
+        ActionUnit::Au16,
+        ActionUnit::Au20,
+        ActionUnit::Au23,
+        ActionUnit::Au26,
+        ActionUnit::Au45,
+    ];
+
+    /// FACS number.
+    pub fn number(self) -> u8 {
+        use ActionUnit::*;
+        match self {
+            Au1 => 1,
+            Au2 => 2,
+            Au4 => 4,
+            Au5 => 5,
+            Au6 => 6,
+            Au7 => 7,
+            Au9 => 9,
+            Au10 => 10,
+            Au12 => 12,
+            Au15 => 15,
+            Au16 => 16,
+            Au20 => 20,
+            Au23 => 23,
+            Au26 => 26,
+            Au45 => 45,
+        }
+    }
+
+    /// Region the AU belongs to (thesis tables 3.8-3.10).
+    pub fn region(self) -> Region {
+        use ActionUnit::*;
+        match self {
+            Au1 | Au2 | Au4 => Region::Upper,
+            Au5 | Au6 | Au7 | Au45 => Region::Middle,
+            _ => Region::Lower,
+        }
+    }
+
+    /// Table C: the muscle channels the AU drives.
+    pub fn muscles(self) -> &'static [MuscleKind] {
+        use ActionUnit::*;
+        use MuscleKind::*;
+        match self {
+            Au1 => &[FrontalisInner],
+            Au2 => &[FrontalisMiddle, FrontalisOuter],
+            Au4 => &[Corrugator, Procerus],
+            Au5 | Au45 => &[OculiUpperPalpebral],
+            Au6 => &[OculiOrbital],
+            Au7 => &[OculiLowerPalpebral],
+            Au9 => &[LevatorAlaequeNasi],
+            Au10 => &[LevatorLabiiSuperioris],
+            Au12 => &[ZygomaticMajor],
+            Au15 => &[DepressorAnguliOris],
+            Au16 => &[DepressorLabiiInferioris],
+            Au20 => &[Risorius],
+            Au23 => &[OrbicularisOris],
+            Au26 => &[Jaw],
+        }
+    }
+
+    /// True for AUs with separate left and right muscles.
+    pub fn bilateral(self) -> bool {
+        self.muscles().iter().any(|m| m.bilateral())
+    }
+}
+
+/// Muscle kinds of table D (plus the jaw rotation channel).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub enum MuscleKind {
+    /// Frontalis, outer part (linear).
+    FrontalisOuter,
+    /// Frontalis, middle part (linear).
+    FrontalisMiddle,
+    /// Frontalis, inner part (linear).
+    FrontalisInner,
+    /// Corrugator supercilii (linear).
+    Corrugator,
+    /// Procerus (linear, single, centred).
+    Procerus,
+    /// Orbicularis oculi, upper palpebral part (sphincter, per eye).
+    OculiUpperPalpebral,
+    /// Orbicularis oculi, orbital part (half-ellipse sphincter, per eye).
+    OculiOrbital,
+    /// Orbicularis oculi, lower palpebral part (sphincter, per eye).
+    OculiLowerPalpebral,
+    /// Levator labii superioris alaeque nasi (linear).
+    LevatorAlaequeNasi,
+    /// Levator labii superioris (linear).
+    LevatorLabiiSuperioris,
+    /// Zygomatic major (linear).
+    ZygomaticMajor,
+    /// Depressor anguli oris (linear).
+    DepressorAnguliOris,
+    /// Depressor labii inferioris (linear).
+    DepressorLabiiInferioris,
+    /// Risorius (linear).
+    Risorius,
+    /// Orbicularis oris (sphincter, single, centred).
+    OrbicularisOris,
+    /// Jaw rotation in degrees, positive = chin down (not a muscle).
+    Jaw,
+}
+
+impl MuscleKind {
+    /// All kinds in table D order.
+    pub const ALL: [MuscleKind; 16] = [
+        MuscleKind::FrontalisOuter,
+        MuscleKind::FrontalisMiddle,
+        MuscleKind::FrontalisInner,
+        MuscleKind::Corrugator,
+        MuscleKind::Procerus,
+        MuscleKind::OculiUpperPalpebral,
+        MuscleKind::OculiOrbital,
+        MuscleKind::OculiLowerPalpebral,
+        MuscleKind::LevatorAlaequeNasi,
+        MuscleKind::LevatorLabiiSuperioris,
+        MuscleKind::ZygomaticMajor,
+        MuscleKind::DepressorAnguliOris,
+        MuscleKind::DepressorLabiiInferioris,
+        MuscleKind::Risorius,
+        MuscleKind::OrbicularisOris,
+        MuscleKind::Jaw,
+    ];
+
+    /// Left and right copies? (procerus, orbicularis oris and the jaw are single;
+    /// the orbicularis oculi parts exist once per eye.)
+    pub fn bilateral(self) -> bool {
+        !matches!(
+            self,
+            MuscleKind::Procerus | MuscleKind::OrbicularisOris | MuscleKind::Jaw
+        )
+    }
+
+    /// True for the Waters linear muscles (the ones with influence parameters).
+    pub fn is_linear(self) -> bool {
+        !matches!(
+            self,
+            MuscleKind::OculiUpperPalpebral
+                | MuscleKind::OculiOrbital
+                | MuscleKind::OculiLowerPalpebral
+                | MuscleKind::OrbicularisOris
+                | MuscleKind::Jaw
+        )
+    }
+
+    /// Region of table D.
+    pub fn region(self) -> Region {
+        use MuscleKind::*;
+        match self {
+            FrontalisOuter | FrontalisMiddle | FrontalisInner | Corrugator | Procerus => {
+                Region::Upper
+            }
+            OculiUpperPalpebral | OculiOrbital | OculiLowerPalpebral => Region::Middle,
+            _ => Region::Lower,
+        }
+    }
+}
+
+/// Table B (Gosselin set) as printed: AUs per basic expression.
+pub fn gosselin_aus(e: Expression) -> &'static [ActionUnit] {
+    use ActionUnit::*;
+    match e {
+        Expression::Neutral => &[],
+        Expression::Surprise => &[Au1, Au2, Au5, Au26],
+        Expression::Fear => &[Au4, Au5, Au7, Au26],
+        Expression::Disgust => &[Au4, Au5, Au9, Au10, Au12, Au26],
+        Expression::Anger => &[Au4, Au5, Au16, Au20, Au23, Au26],
+        Expression::Happiness => &[Au6, Au12, Au26],
+        Expression::Sadness => &[Au1, Au4, Au7, Au15, Au26],
+    }
+}
+
+/// AUs the model actually drives per expression: table B, except disgust.
+///
+/// **Correction** (documented here, checked by a test against table D):
+/// the thesis's own working tables 3.8-3.10 and its muscle database (table D)
+/// give disgust AU 7 (lower palpebral, 0.43) and no AU 12 (no zygomatic
+/// value), while the printed Gosselin row lists 12 and omits 7. We follow
+/// the working tables: disgust = 4, 5, 7, 9, 10, 26. For every other
+/// expression this equals [`gosselin_aus`].
+pub fn expression_aus(e: Expression) -> &'static [ActionUnit] {
+    use ActionUnit::*;
+    match e {
+        Expression::Disgust => &[Au4, Au5, Au7, Au9, Au10, Au26],
+        other => gosselin_aus(other),
+    }
+}
+
+/// The 35 emotions of table A.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[allow(missing_docs)]
+pub enum Emotion {
+    Neutral,
+    Surprise,
+    Questioning,
+    Interest,
+    Dazed,
+    QuestioningSurprise,
+    Astonishment,
+    Stunned,
+    Fear,
+    Worry,
+    RestrainedFear,
+    SurpriseFearFearStronger,
+    SurpriseFearSurpriseStronger,
+    Frightened,
+    Disgust,
+    Contempt,
+    Disbelief,
+    Anger,
+    RestrainedAnger,
+    AngerDisgust,
+    Exasperation,
+    Perplexity,
+    Happiness,
+    HappySurprise,
+    Arrogance,
+    HiddenAnger,
+    HiddenFear,
+    Sadness,
+    MildSadness,
+    RestrainedSadness,
+    SadnessFear,
+    SadnessAnger,
+    Determination,
+    SadnessDisgust,
+    HiddenSadness,
+}
+
+/// Table A rows: (emotion, [upper, middle, lower]).
+pub const TABLE_A: [(Emotion, [Expression; 3]); 35] = {
+    use Emotion as E;
+    use Expression::{
+        Anger as A, Disgust as D, Fear as F, Happiness as H, Neutral as N, Sadness as Sa,
+        Surprise as Su,
+    };
+    [
+        (E::Neutral, [N, N, N]),
+        (E::Surprise, [Su, Su, Su]),
+        (E::Questioning, [Su, N, N]),
+        (E::Interest, [N, Su, N]),
+        (E::Dazed, [N, N, Su]),
+        (E::QuestioningSurprise, [Su, Su, N]),
+        (E::Astonishment, [N, Su, Su]),
+        (E::Stunned, [Su, N, Su]),
+        (E::Fear, [F, F, F]),
+        (E::Worry, [F, N, N]),
+        (E::RestrainedFear, [N, F, N]),
+        (E::SurpriseFearFearStronger, [Su, F, F]),
+        (E::SurpriseFearSurpriseStronger, [Su, Su, F]),
+        (E::Frightened, [F, F, Su]),
+        (E::Disgust, [D, D, D]),
+        (E::Contempt, [N, N, D]),
+        (E::Disbelief, [Su, D, D]),
+        (E::Anger, [A, A, A]),
+        (E::RestrainedAnger, [A, N, N]),
+        (E::AngerDisgust, [A, D, D]),
+        (E::Exasperation, [A, A, Su]),
+        (E::Perplexity, [A, A, F]),
+        (E::Happiness, [N, H, H]),
+        (E::HappySurprise, [Su, Su, H]),
+        (E::Arrogance, [N, H, D]),
+        (E::HiddenAnger, [N, H, A]),
+        (E::HiddenFear, [N, H, F]),
+        (E::Sadness, [Sa, Sa, Sa]),
+        (E::MildSadness, [Sa, Sa, N]),
+        (E::RestrainedSadness, [Sa, N, N]),
+        (E::SadnessFear, [Sa, Sa, F]),
+        (E::SadnessAnger, [A, A, Sa]),
+        (E::Determination, [Sa, Sa, A]),
+        (E::SadnessDisgust, [Sa, Sa, D]),
+        (E::HiddenSadness, [Sa, Sa, Su]),
+    ]
+};
+
+impl Emotion {
+    /// Region expressions [upper, middle, lower] (table A).
+    pub fn regions(self) -> [Expression; 3] {
+        TABLE_A[self as usize].1
+    }
+
+    /// All 35 emotions.
+    pub fn all() -> impl Iterator<Item = Emotion> {
+        TABLE_A.iter().map(|r| r.0)
+    }
+
+    /// Parse a script name: the variant name, case-insensitive, with or
+    /// without underscores (`hidden_anger`, `HiddenAnger`).
+    pub fn parse(name: &str) -> Option<Emotion> {
+        let norm: String = name
+            .chars()
+            .filter(|c| *c != '_' && *c != '-')
+            .collect::<String>()
+            .to_lowercase();
+        Emotion::all().find(|e| format!("{e:?}").to_lowercase() == norm)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn table_a_is_indexed_by_discriminant() {
+        for (i, (e, _)) in TABLE_A.iter().enumerate() {
+            assert_eq!(*e as usize, i);
+        }
+        assert_eq!(
+            Emotion::Contempt.regions(),
+            [
+                Expression::Neutral,
+                Expression::Neutral,
+                Expression::Disgust
+            ]
+        );
+        assert_eq!(Emotion::parse("hidden_anger"), Some(Emotion::HiddenAnger));
+        assert_eq!(Emotion::parse("nope"), None);
+    }
+}
