@@ -422,6 +422,29 @@ pub enum Expect {
         #[serde(default, deserialize_with = "opt_time")]
         to: Option<f64>,
     },
+    /// |angle| reaches at least `min_deg` at some time in [from, to].
+    AngleReaches {
+        /// Which angle.
+        joint: JointName,
+        /// Bound, degrees.
+        #[serde(deserialize_with = "crate::check::non_negative")]
+        min_deg: f64,
+        /// Window start, s.
+        #[serde(deserialize_with = "crate::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "crate::check::non_negative")]
+        to: f64,
+    },
+    /// Before every punch the VH throws, its eyes have been on the attack
+    /// target (chosen top-down during the attack, line-of-sight error under
+    /// 2 deg) for at least `min_lead` seconds: the telegraph. Fails if no
+    /// punch is thrown.
+    Telegraph {
+        /// Minimum lead, s.
+        #[serde(deserialize_with = "crate::check::non_negative")]
+        min_lead: f64,
+    },
     /// Both eyes' line-of-sight error to the gaze point stays below
     /// `max_deg` over [from, to].
     LineOfSight {
@@ -609,11 +632,12 @@ fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), LoadError> {
             | Expect::GazeShareAtMost { from, to, .. }
             | Expect::GazeReaches { from, to, .. }
             | Expect::LineOfSight { from, to, .. }
+            | Expect::AngleReaches { from, to, .. }
             | Expect::ActionShare { from, to, .. } => Some((*from, *to)),
             Expect::AngleBelow { from, to, .. } => {
                 Some((from.unwrap_or(0.0), to.unwrap_or(scene.duration)))
             }
-            Expect::Finite => None,
+            Expect::Finite | Expect::Telegraph { .. } => None,
         };
         if let Some((from, to)) = window
             && (to < from || to > scene.duration + 1e-9)

@@ -327,8 +327,15 @@ impl Sim {
         // Behaviour (top-down request, glove targets).
         let head_c = self.world.seg(seg::HEAD).translation().as_dvec3();
         let torso_c = self.world.seg(seg::TORSO).translation().as_dvec3();
+        let eyes_on = self
+            .last
+            .as_ref()
+            .filter(|s| s.los_error[0].max(s.los_error[1]) < 2f64.to_radians())
+            .map(|s| &s.gaze_target);
         let view = OpponentView {
             seen: &self.seen,
+            names: &self.names,
+            eyes_on,
             parts: self.world.opponent,
             vh_points: [head_c, torso_c, (head_c + torso_c) / 2.0],
         };
