@@ -84,7 +84,11 @@ pub struct TopDown {
 
 /// The stronger of two top-down requests (the action's wins ties).
 fn strongest(action: TopDown, face: TopDown) -> TopDown {
-    if face.amount > action.amount { face } else { action }
+    if face.amount > action.amount {
+        face
+    } else {
+        action
+    }
 }
 
 /// What the opponent looks like to the planner this tick.

@@ -200,6 +200,19 @@ pub enum Part {
     Body(String),
 }
 
+/// The VH's left or right (eyes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+pub enum Side {
+    /// The VH's left.
+    Left,
+    /// The VH's right.
+    Right,
+}
+
+fn opt_non_negative<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+    crate::check::non_negative(d).map(Some)
+}
+
 /// Where an opponent punch is aimed.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 pub enum PunchTarget {
@@ -272,6 +285,57 @@ pub enum Action {
         /// End of the override, seconds.
         #[serde(deserialize_with = "crate::check::non_negative")]
         until: f64,
+        /// Attention amount A for the head law (M8); default the
+        /// personality's `a2` (the head faces the point).
+        #[serde(default, deserialize_with = "opt_non_negative")]
+        amount: Option<f64>,
+        /// How to shift the gaze there (default: the scene's law).
+        #[serde(default)]
+        style: Option<crate::oculomotor::GazeShiftLaw>,
+    },
+    /// Override the gaze: follow a body (by name) until a time.
+    Track {
+        /// Body name (`head`, `left_glove`, a prop...).
+        body: String,
+        /// End of the override, seconds.
+        #[serde(deserialize_with = "crate::check::non_negative")]
+        until: f64,
+    },
+    /// Move a part at constant angular speed on a horizontal circle about
+    /// a centre (a pursuit target).
+    Orbit {
+        /// What moves.
+        part: Part,
+        /// Centre of the circle, world metres.
+        #[serde(deserialize_with = "crate::check::vec3")]
+        centre: DVec3,
+        /// Angular speed about +Y (positive: toward the VH's left), deg/s.
+        #[serde(deserialize_with = "crate::check::finite")]
+        rate_deg: f64,
+        /// Duration, seconds.
+        #[serde(deserialize_with = "crate::check::positive")]
+        duration: f64,
+    },
+    /// Shut or cover one eye (`Some(Left)`, `Some(Right)`) or none (`None`).
+    Occlude {
+        /// The covered eye.
+        eye: Option<Side>,
+    },
+    /// Impose a sinusoidal neck motion (overriding the head law), e.g. to
+    /// measure the VOR: yaw and pitch amplitudes in degrees.
+    ShakeHead {
+        /// Yaw amplitude, deg.
+        #[serde(deserialize_with = "crate::check::non_negative")]
+        yaw_deg: f64,
+        /// Pitch amplitude, deg.
+        #[serde(default, deserialize_with = "crate::check::non_negative")]
+        pitch_deg: f64,
+        /// Frequency, Hz.
+        #[serde(deserialize_with = "crate::check::positive")]
+        frequency: f64,
+        /// Duration, s.
+        #[serde(deserialize_with = "crate::check::positive")]
+        duration: f64,
     },
 }
 
@@ -604,9 +668,27 @@ fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), LoadError> {
     }
     for (i, e) in scene.timeline.iter().enumerate() {
         let part = match &e.action {
-            Action::Move { part, .. } | Action::Wave { part, .. } => Some(part),
+            Action::Move { part, .. } | Action::Wave { part, .. } | Action::Orbit { part, .. } => {
+                Some(part)
+            }
             _ => None,
         };
+        if let Action::Track { body, until } = &e.action {
+            if !names.contains(&body.as_str()) {
+                return Err(err(
+                    &format!("\"{body}\""),
+                    format!("timeline[{i}].do.Track.body"),
+                    format!("no body named `{body}` (opponent parts or `bodies`)"),
+                ));
+            }
+            if *until < e.at {
+                return Err(err(
+                    "until",
+                    format!("timeline[{i}].do.Track.until"),
+                    format!("must not precede `at` ({}), got {until}", e.at),
+                ));
+            }
+        }
         if let Some(Part::Body(name)) = part
             && !scene.bodies.iter().any(|b| &b.name == name && b.kinematic)
         {
@@ -621,7 +703,7 @@ fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), LoadError> {
         {
             return Err(err(
                 "until",
-                format!("timeline[{i}].do.until"),
+                format!("timeline[{i}].do.LookAt.until"),
                 format!("must not precede `at` ({}), got {until}", e.at),
             ));
         }

@@ -15,8 +15,10 @@ use crate::face::mesh::MeshParams;
 use crate::face::params::FaceParams;
 use crate::face::tables::Emotion;
 use crate::face::{Face, FaceState};
-use crate::oculomotor::{GazeInput, Oculomotor};
-use crate::scene::{Action, ActionKind, Hand, LoadedScene, Part, PropShape, PunchTarget, Scene};
+use crate::oculomotor::{AxisCommand, GazeInput, GazeShiftLaw, Oculomotor};
+use crate::scene::{
+    Action, ActionKind, Hand, LoadedScene, Part, PropShape, PunchTarget, Scene, Side,
+};
 use crate::script::Track;
 use crate::vision::{Seen, see};
 use crate::world::{JointAngles, PropSpec, World, opp};
@@ -71,6 +73,38 @@ pub struct Sample {
     pub blink: f64,
 }
 
+/// A scene's gaze override in force.
+#[derive(Clone, Debug)]
+struct Override {
+    /// Body to follow, or a fixed point.
+    body: Option<usize>,
+    point: DVec3,
+    until: f64,
+    amount: Option<f64>,
+    style: Option<GazeShiftLaw>,
+}
+
+/// An imposed sinusoidal neck motion.
+#[derive(Clone, Copy, Debug)]
+struct Shake {
+    amplitude: DVec2,
+    freq: f64,
+    t0: f64,
+    until: f64,
+}
+
+impl Shake {
+    fn command(&self, t: f64) -> AxisCommand {
+        let w = std::f64::consts::TAU * self.freq;
+        let ph = w * (t - self.t0);
+        AxisCommand {
+            angles: self.amplitude * ph.sin(),
+            rates: self.amplitude * (w * ph.cos()),
+            accel: self.amplitude * (-w * w * ph.sin()),
+        }
+    }
+}
+
 /// Independent random streams, one per consumer, all derived from the
 /// scene seed, so adding draws to one never shifts another.
 struct Streams {
@@ -112,7 +146,9 @@ pub struct Sim {
     pub face: Face,
     /// The face's evolving state (expression, blinks).
     pub face_state: FaceState,
-    look_at: Option<(DVec3, f64)>,
+    look_at: Option<Override>,
+    occluded: [bool; 2],
+    shake: Option<Shake>,
     seen: Vec<Seen>,
     targets: Vec<JointTarget>,
     rng: Streams,
@@ -192,6 +228,8 @@ impl Sim {
             attention: Attention::new(names.clone()),
             behaviour,
             look_at: None,
+            occluded: [false; 2],
+            shake: None,
             seen: Vec::new(),
             targets,
             names,
@@ -287,7 +325,57 @@ impl Sim {
                         tr.punch(t, to, speed);
                     }
                 }
-                Action::LookAt { point, until } => self.look_at = Some((point, until)),
+                Action::LookAt {
+                    point,
+                    until,
+                    amount,
+                    style,
+                } => {
+                    self.look_at = Some(Override {
+                        body: None,
+                        point,
+                        until,
+                        amount,
+                        style,
+                    })
+                }
+                Action::Track { body, until } => {
+                    let b = self.world.body_index(&body).expect("validated body name");
+                    self.look_at = Some(Override {
+                        body: Some(b),
+                        point: DVec3::ZERO,
+                        until,
+                        amount: None,
+                        style: None,
+                    });
+                }
+                Action::Orbit {
+                    part,
+                    centre,
+                    rate_deg,
+                    duration,
+                } => {
+                    let b = self.part_body(&part);
+                    if let Some(tr) = self.track_mut(b) {
+                        tr.orbit(t, centre, rate_deg.to_radians(), duration);
+                    }
+                }
+                Action::Occlude { eye } => {
+                    self.occluded = [eye == Some(Side::Left), eye == Some(Side::Right)];
+                }
+                Action::ShakeHead {
+                    yaw_deg,
+                    pitch_deg,
+                    frequency,
+                    duration,
+                } => {
+                    self.shake = Some(Shake {
+                        amplitude: DVec2::new(yaw_deg, pitch_deg) * (std::f64::consts::PI / 180.0),
+                        freq: frequency,
+                        t0: t,
+                        until: t + duration,
+                    })
+                }
                 Action::Emotion {
                     emotion,
                     intensity,
@@ -322,7 +410,8 @@ impl Sim {
         }
 
         // Vision.
-        see(&self.world, &self.scene.vh.vision, &mut self.seen);
+        let open = self.occluded.map(|o| !o);
+        see(&self.world, &self.scene.vh.vision, open, &mut self.seen);
 
         // Behaviour (top-down request, glove targets).
         let head_c = self.world.seg(seg::HEAD).translation().as_dvec3();
@@ -351,26 +440,29 @@ impl Sim {
         // Attention (or the scene's override).
         let world = &self.world;
         let body_pos = |b: usize| world.rb(b).translation().as_dvec3();
-        let choice = match self.look_at {
-            Some((point, until)) if t < until => {
+        // Attention always runs (its scores and habituation stay live); a
+        // scene's override, while in force, replaces its choice.
+        let chosen = self.attention.step(
+            &self.scene.vh.attention,
+            &self.seen,
+            &top_down,
+            body_pos,
+            t,
+            dt,
+        );
+        let choice = match &self.look_at {
+            Some(o) if t < o.until => {
                 let c = GazeChoice {
-                    name: "point".into(),
-                    body: None,
-                    point,
-                    amount: self.scene.vh.personality.a2,
+                    name: o.body.map_or("point".into(), |b| self.names[b].clone()),
+                    body: o.body,
+                    point: o.body.map_or(o.point, body_pos),
+                    amount: o.amount.unwrap_or(self.scene.vh.personality.a2),
                     source: Source::Override,
                 };
                 self.attention.force(c.clone(), t);
                 c
             }
-            _ => self.attention.step(
-                &self.scene.vh.attention,
-                &self.seen,
-                &top_down,
-                body_pos,
-                t,
-                dt,
-            ),
+            _ => chosen,
         };
 
         // Oculomotor: eye and neck targets.
@@ -390,7 +482,17 @@ impl Sim {
                 DVec2::new(a.yaw, a.pitch)
             }),
             neck_angles: self.world.joint_angles(seg::HEAD),
-            visible: [true, true],
+            visible: self.occluded.map(|o| !o),
+            style: self
+                .look_at
+                .as_ref()
+                .filter(|o| t < o.until)
+                .and_then(|o| o.style)
+                .unwrap_or(self.scene.vh.oculomotor.gaze_shift),
+            neck_override: self
+                .shake
+                .filter(|s| t < s.until)
+                .map(|s| s.command(t + dt)),
         };
         let out = self.oculomotor.step(
             &self.scene.vh.oculomotor,

@@ -169,8 +169,9 @@ pub fn in_field(f: &FieldOfView, los: DVec3, dir: DVec3, left: bool) -> bool {
     yaw_ok && pitch_ok
 }
 
-/// Everything the VH sees now, with saliency. `out` is reused between ticks.
-pub fn see(world: &World, p: &VisionParams, out: &mut Vec<Seen>) {
+/// Everything the VH sees now, with saliency. `open` says which eyes are
+/// open (a shut or covered eye sees nothing). `out` is reused between ticks.
+pub fn see(world: &World, p: &VisionParams, open: [bool; 2], out: &mut Vec<Seen>) {
     out.clear();
     let head = world.seg(seg::HEAD);
     let head_rot = head.rotation().as_dquat();
@@ -197,6 +198,9 @@ pub fn see(world: &World, p: &VisionParams, out: &mut Vec<Seen>) {
         }
         let mut by_eye = [false; 2];
         for (k, (eye_pos, los)) in eyes.iter().enumerate() {
+            if !open[k] {
+                continue;
+            }
             let ray_dir = pos - eye_pos.as_dvec3();
             if !in_field(&p.field, *los, head_inv * ray_dir.normalize(), k == 0) {
                 continue;
