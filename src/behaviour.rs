@@ -188,6 +188,16 @@ impl Behaviour {
         }
     }
 
+    /// What the current action is about: the attack target or the
+    /// incoming glove (body name or point name); `None` while idle.
+    pub fn target_name<'a>(&'a self, names: &'a [String]) -> Option<&'a str> {
+        match &self.plan {
+            Plan::Idle => None,
+            Plan::Guard { threat, .. } => Some(&names[*threat]),
+            Plan::Attack { target, .. } => Some(&target.name),
+        }
+    }
+
     /// True while the VH's punch is in flight (after the telegraph).
     pub fn punching(&self) -> bool {
         matches!(self.plan, Plan::Attack { thrown: true, .. })

@@ -36,6 +36,8 @@ pub struct Sample {
     pub t: f64,
     /// The VH's action.
     pub action: ActionKind,
+    /// What the action is about (attack target, incoming glove), if any.
+    pub action_target: Option<String>,
     /// Gaze target name.
     pub gaze_target: String,
     /// Gaze point, world.
@@ -590,6 +592,7 @@ impl Sim {
         Sample {
             t: self.time(),
             action: self.behaviour.action(),
+            action_target: self.behaviour.target_name(&self.names).map(String::from),
             gaze_target: choice.name.clone(),
             gaze_point: choice.point,
             source: choice.source,

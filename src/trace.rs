@@ -26,6 +26,9 @@ const COLUMNS: &[(&str, Cell)] = &[
     ("action", |s, o| {
         o.push_str(&format!("{:?}", s.action).to_lowercase())
     }),
+    ("action_target", |s, o| {
+        o.push_str(s.action_target.as_deref().unwrap_or(""))
+    }),
     ("gaze_target", |s, o| o.push_str(&s.gaze_target)),
     ("gaze_x", |s, o| num(o, s.gaze_point.x)),
     ("gaze_y", |s, o| num(o, s.gaze_point.y)),
