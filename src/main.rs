@@ -92,6 +92,12 @@ enum Command {
         #[arg(long, default_value = "sweep-out")]
         out: PathBuf,
     },
+    /// Face tools: export the head with morph targets, calibrate the muscle
+    /// database from subject data.
+    Face {
+        #[command(subcommand)]
+        command: FaceCommand,
+    },
     /// Plot a trace: gaze, eye and head angles against time, with the
     /// gaze-target switches marked.
     Plot {
@@ -103,6 +109,30 @@ enum Command {
         /// Image size, WxH.
         #[arg(long, default_value = "1400x900", value_parser = parse_size)]
         size: (u32, u32),
+    },
+}
+
+#[derive(Subcommand)]
+enum FaceCommand {
+    /// Export the neutral generated head to glTF (.glb) with one morph
+    /// target per muscle and ARKit-named shapes.
+    Export {
+        /// Output .glb file.
+        #[arg(long)]
+        out: PathBuf,
+        /// Mesh resolution (latitude bands).
+        #[arg(long, default_value_t = 48)]
+        rows: usize,
+    },
+    /// Turn per-subject settings (CSV: expression, subject, one column per
+    /// muscle) into a muscle database with the thesis's rule (drop values
+    /// outside mean +/- 1 SD, average the rest).
+    Calibrate {
+        /// Subject data, CSV.
+        csv: PathBuf,
+        /// Output muscle database (RON), usable as a scene's `vh.face.database`.
+        #[arg(long)]
+        out: PathBuf,
     },
 }
 
@@ -338,6 +368,33 @@ fn sweep_cmd(
     Ok(())
 }
 
+fn face_cmd(c: FaceCommand) -> Result<()> {
+    use shisen::face::{Face, calibrate, exchange, mesh::MeshParams, params::FaceParams};
+    match c {
+        FaceCommand::Export { out, rows } => {
+            if !(24..=400).contains(&rows) {
+                anyhow::bail!("--rows: must be 24-400, got {rows}");
+            }
+            let face = Face::new(MeshParams { rows }, FaceParams::default_params());
+            std::fs::write(&out, exchange::export_glb(&face))
+                .with_context(|| format!("cannot write {}", out.display()))?;
+            println!(
+                "{}: {} vertices, {} triangles, morph targets per muscle and ARKit shape",
+                out.display(),
+                face.mesh.positions.len(),
+                face.mesh.triangles.len()
+            );
+        }
+        FaceCommand::Calibrate { csv, out } => {
+            let params = calibrate::calibrate_file(&FaceParams::default_params(), &csv)?;
+            std::fs::write(&out, params.to_ron())
+                .with_context(|| format!("cannot write {}", out.display()))?;
+            println!("muscle database written to {}", out.display());
+        }
+    }
+    Ok(())
+}
+
 fn main() -> ExitCode {
     tracing_subscriber::fmt()
         .with_env_filter(
@@ -402,6 +459,7 @@ fn main() -> ExitCode {
             seed,
             out,
         }) => report(sweep_cmd(group.into(), runs, grid, seed, &out)),
+        Some(Command::Face { command }) => report(face_cmd(command)),
         Some(Command::Plot { trace, out, size }) => {
             match shisen::plot::plot_trace(&trace, &out, size) {
                 Ok(()) => ExitCode::SUCCESS,

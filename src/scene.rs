@@ -163,14 +163,27 @@ pub struct VhParams {
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct FaceConfig {
-    /// Mesh resolution: latitude bands (vertices ~ 2 rows^2; 32 ~ 2k, 160 ~ 51k).
+    /// Mesh resolution of the generated head: latitude bands (vertices ~
+    /// 2 rows^2; 32 ~ 2k, 160 ~ 51k).
     #[serde(deserialize_with = "face_rows")]
     pub rows: usize,
+    /// A muscle database (RON) replacing the shipped one, relative to the
+    /// scene file (e.g. the output of `shisen face calibrate`).
+    pub database: Option<PathBuf>,
+    /// A user's head mesh (OBJ or GLB) instead of the generated one ...
+    pub mesh: Option<PathBuf>,
+    /// ... with the landmark file that places its muscles (RON).
+    pub landmarks: Option<PathBuf>,
 }
 
 impl Default for FaceConfig {
     fn default() -> Self {
-        FaceConfig { rows: 48 }
+        FaceConfig {
+            rows: 48,
+            database: None,
+            mesh: None,
+            landmarks: None,
+        }
     }
 }
 
@@ -276,6 +289,13 @@ pub enum Action {
         /// Onset/offset shape `I`..`V` (default `III`, the thesis's choice).
         #[serde(default)]
         pattern: crate::face::timing::Pattern,
+    },
+    /// Play a script in the thesis's plain format (`emotion duration
+    /// speed` per line, face.md 9) from this time; the file is relative to
+    /// the scene and is expanded into `Emotion` events when the scene loads.
+    EmotionScript {
+        /// The script file.
+        file: PathBuf,
     },
     /// Override the gaze: look at a world point until a time.
     LookAt {
@@ -580,13 +600,16 @@ pub struct Scene {
     pub expect: Vec<Expect>,
 }
 
-/// A scene with the gains it resolved to.
+/// A scene with everything it refers to resolved and validated: gains,
+/// the face model (shared, static), expanded emotion scripts.
 #[derive(Clone, Debug)]
 pub struct LoadedScene {
     /// The scene.
     pub scene: Scene,
     /// Gains in force at start.
     pub gains: Gains,
+    /// The face model (mesh, muscles, database), shared by every run.
+    pub face: std::sync::Arc<crate::face::Face>,
     /// Where it came from (for messages).
     pub source: String,
 }
@@ -619,19 +642,96 @@ impl LoadedScene {
                 .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
         }
         validate(&scene, text, file)?;
+        let resolve = |rel: &Path| dir.map_or(rel.to_path_buf(), |d| d.join(rel));
         let gains = match (&scene.gains, &scene.gains_file) {
             (Some(g), _) => g.clone(),
-            (None, Some(rel)) => {
-                let p = dir.map_or(rel.clone(), |d| d.join(rel));
-                Gains::load(&p)?
-            }
+            (None, Some(rel)) => Gains::load(&resolve(rel))?,
             (None, None) => Gains::default(),
         };
+        expand_scripts(&mut scene, &resolve)?;
+        let face = load_face(&scene.vh.face, &resolve, text, file)?;
         Ok(LoadedScene {
             scene,
             gains,
+            face: std::sync::Arc::new(face),
             source: file.display().to_string(),
         })
+    }
+}
+
+/// Replace each `EmotionScript` event by the `Emotion` events it holds.
+fn expand_scripts(scene: &mut Scene, resolve: &dyn Fn(&Path) -> PathBuf) -> Result<(), LoadError> {
+    let mut out = Vec::with_capacity(scene.timeline.len());
+    for e in scene.timeline.drain(..) {
+        match &e.action {
+            Action::EmotionScript { file } => {
+                let steps = crate::face::script::load_script(&resolve(file))?;
+                for (at, emotion, speed) in crate::face::script::to_events(&steps, e.at) {
+                    out.push(Event {
+                        at,
+                        action: Action::Emotion {
+                            emotion,
+                            intensity: 1.0,
+                            speed,
+                            pattern: Default::default(),
+                        },
+                    });
+                }
+            }
+            _ => out.push(e),
+        }
+    }
+    scene.timeline = out;
+    Ok(())
+}
+
+/// Build the face model a scene asks for.
+fn load_face(
+    c: &FaceConfig,
+    resolve: &dyn Fn(&Path) -> PathBuf,
+    text: &str,
+    file: &Path,
+) -> Result<crate::face::Face, LoadError> {
+    use crate::face::{Face, FaceError, mesh::MeshParams, params::FaceParams};
+    let face_err = |e: FaceError| match e {
+        FaceError::Parse(l) => l,
+        other => {
+            let (line, col) = line_of(text, "face");
+            LoadError::Invalid {
+                file: file.display().to_string(),
+                line,
+                col,
+                field: "vh.face".into(),
+                message: other.to_string(),
+            }
+        }
+    };
+    let params = match &c.database {
+        Some(rel) => {
+            let p = resolve(rel);
+            let t = std::fs::read_to_string(&p).map_err(|e| LoadError::Io {
+                file: p.display().to_string(),
+                source: e,
+            })?;
+            FaceParams::parse(&t, &p).map_err(face_err)?
+        }
+        None => FaceParams::default_params(),
+    };
+    match (&c.mesh, &c.landmarks) {
+        (Some(m), Some(l)) => {
+            crate::face::import::import(&resolve(m), &resolve(l), params).map_err(face_err)
+        }
+        (None, None) => Ok(Face::new(MeshParams { rows: c.rows }, params)),
+        _ => {
+            let (line, col) = line_of(text, "mesh");
+            Err(LoadError::Invalid {
+                file: file.display().to_string(),
+                line,
+                col,
+                field: "vh.face".into(),
+                message: "`mesh` and `landmarks` go together".into(),
+            })
+        }
     }
 }
 

@@ -11,8 +11,6 @@ use crate::attention::{Attention, GazeChoice, Source};
 use crate::behaviour::{Behaviour, OpponentView, arm_ik};
 use crate::body::{BodyPlan, Shape, seg};
 use crate::control::{Gains, JointTarget};
-use crate::face::mesh::MeshParams;
-use crate::face::params::FaceParams;
 use crate::face::tables::Emotion;
 use crate::face::{Face, FaceState};
 use crate::oculomotor::{AxisCommand, GazeInput, GazeShiftLaw, Oculomotor};
@@ -144,8 +142,8 @@ pub struct Sim {
     pub behaviour: Behaviour,
     /// Eye and head control state.
     pub oculomotor: Oculomotor,
-    /// The face model (mesh, muscles, database).
-    pub face: Face,
+    /// The face model (mesh, muscles, database), shared and static.
+    pub face: std::sync::Arc<Face>,
     /// The face's evolving state (expression, blinks).
     pub face_state: FaceState,
     look_at: Option<Override>,
@@ -209,14 +207,8 @@ impl Sim {
             targets[base + 1].rotation = e;
         }
         let mut rng = Streams::new(scene.seed);
-        let face = Face::new(
-            MeshParams {
-                rows: scene.vh.face.rows,
-            },
-            FaceParams::default_params(),
-        );
         Sim {
-            face,
+            face: loaded.face.clone(),
             face_state: FaceState::default(),
             oculomotor: Oculomotor::new(&scene.vh.oculomotor, &mut rng.oculomotor),
             rng,
@@ -327,6 +319,8 @@ impl Sim {
                         tr.punch(t, to, speed);
                     }
                 }
+                // Expanded into `Emotion` events when the scene loaded.
+                Action::EmotionScript { .. } => {}
                 Action::LookAt {
                     point,
                     until,
