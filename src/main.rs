@@ -232,6 +232,12 @@ fn run(a: RunArgs) -> Result<bool> {
         secs,
         report.sim_time / secs.max(1e-9)
     );
+    if report.resets > 0 {
+        println!(
+            "warning: the physics blew up {} times; the VH was reset each time (trace column `reset`)",
+            report.resets
+        );
+    }
     for v in &report.verdicts {
         println!(
             "{}  {}: measured {}",

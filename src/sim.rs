@@ -71,7 +71,12 @@ pub struct Sample {
     pub emotion: Emotion,
     /// Upper-lid closure of the blink, 0 open to 1 shut.
     pub blink: f64,
+    /// The physics blew up this tick and the VH was reset to rest.
+    pub reset: bool,
 }
+
+/// Angular speed (rad/s) of a VH segment taken as a physics explosion.
+pub const BLOW_UP_ANGVEL: f32 = 200.0;
 
 /// A scene's gaze override in force.
 #[derive(Clone, Debug)]
@@ -153,6 +158,8 @@ pub struct Sim {
     targets: Vec<JointTarget>,
     rng: Streams,
     names: Vec<String>,
+    /// Times the VH was reset after a physics explosion.
+    pub resets: u32,
     last: Option<Sample>,
 }
 
@@ -206,6 +213,7 @@ impl Sim {
             targets[base].rotation = s;
             targets[base + 1].rotation = e;
         }
+        warn_unstable(&world, &loaded.gains);
         let mut rng = Streams::new(scene.seed);
         Sim {
             face: loaded.face.clone(),
@@ -227,6 +235,7 @@ impl Sim {
             seen: Vec::new(),
             targets,
             names,
+            resets: 0,
             last: None,
         }
     }
@@ -388,6 +397,20 @@ impl Sim {
         }
     }
 
+    /// Recover from a physics explosion: the VH back at rest in its rest
+    /// pose, its controllers restarted; the opponent, props and the scene's
+    /// timeline carry on. Counted in [`Sim::resets`].
+    pub fn reset_vh(&mut self) {
+        tracing::warn!(t = self.time(), "physics blew up: VH reset to rest");
+        self.world.reset_vh();
+        self.oculomotor = Oculomotor::new(&self.scene.vh.oculomotor, &mut self.rng.oculomotor);
+        self.behaviour = Behaviour::new(&self.world.plan);
+        for t in &mut self.targets {
+            *t = JointTarget::default();
+        }
+        self.resets += 1;
+    }
+
     /// Replace the gains while running.
     pub fn set_gains(&mut self, gains: Gains) {
         self.gains = gains;
@@ -538,13 +561,18 @@ impl Sim {
         self.world.apply_control(&self.gains, &self.targets);
         self.world.step();
         self.tick += 1;
+        let reset = self.world.blown_up(BLOW_UP_ANGVEL);
+        if reset {
+            self.reset_vh();
+        }
 
         let neck_target = JointAngles {
             yaw: out.neck.angles.x,
             pitch: out.neck.angles.y,
             roll: 0.0,
         };
-        let sample = self.sample(&choice, &out.eyes.map(|e| e.angles), neck_target);
+        let mut sample = self.sample(&choice, &out.eyes.map(|e| e.angles), neck_target);
+        sample.reset = reset;
         self.last = Some(sample);
         self.last.as_ref().expect("just set")
     }
@@ -604,6 +632,24 @@ impl Sim {
             head_hit,
             emotion: self.face_state.emotion,
             blink: self.face_state.blink.closure(&self.face.params.blink),
+            reset: false,
+        }
+    }
+}
+
+/// Warn about gains beyond the explicit-integration stability bound (they
+/// will blow up; the run survives through [`Sim::reset_vh`]).
+fn warn_unstable(world: &World, gains: &Gains) {
+    for (s, segm) in world.plan.segments.iter().enumerate() {
+        let Some(group) = segm.group else { continue };
+        let i = world.subtree_inertia(s, world.pivot(s));
+        let smallest = i.x_axis.x.min(i.y_axis.y).min(i.z_axis.z) as f64;
+        if !crate::control::explicit_stable(gains.group(group), smallest, world.dt) {
+            tracing::warn!(
+                "{group:?} gains exceed the explicit stability bound at dt = {} s on {} (I = {smallest:.3e} kg m^2): expect blow-ups and resets",
+                world.dt,
+                segm.name
+            );
         }
     }
 }

@@ -63,6 +63,7 @@ const COLUMNS: &[(&str, Cell)] = &[
         let _ = write!(o, "{:?}", s.emotion);
     }),
     ("blink", |s, o| num(o, s.blink)),
+    ("reset", |s, o| o.push_str(if s.reset { "1" } else { "0" })),
     ("salient_1", |s, o| top(o, s, 0)),
     ("salient_2", |s, o| top(o, s, 1)),
     ("salient_3", |s, o| top(o, s, 2)),
