@@ -27,6 +27,7 @@ pub mod plot;
 pub mod scene;
 pub mod script;
 pub mod sim;
+pub mod soak;
 pub mod trace;
 pub mod tune;
 pub mod vision;
