@@ -267,7 +267,10 @@ mod tests {
             ex_angle += ex_w * dt;
         }
         assert!(angle.abs() < 1e-3, "stable PD settles: {angle}");
-        assert!(ex_angle.is_nan() || ex_angle.abs() > 1.0, "explicit PD diverges: {ex_angle}");
+        assert!(
+            ex_angle.is_nan() || ex_angle.abs() > 1.0,
+            "explicit PD diverges: {ex_angle}"
+        );
     }
 
     #[test]

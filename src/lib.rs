@@ -22,6 +22,7 @@ pub mod face;
 pub mod headless;
 pub mod math;
 pub mod metrics;
+pub mod mjcf;
 pub mod oculomotor;
 pub mod plot;
 pub mod scene;

@@ -102,6 +102,13 @@ enum Command {
         #[arg(long, default_value_t = 1)]
         seed: u64,
     },
+    /// Write the VH and opponent bodies as an MJCF model (for the MuJoCo
+    /// comparison in benches/mujoco_compare.py).
+    ExportMjcf {
+        /// Output XML file.
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Face tools: export the head with morph targets, calibrate the muscle
     /// database from subject data.
     Face {
@@ -516,6 +523,13 @@ fn main() -> ExitCode {
             out,
         }) => report(sweep_cmd(group.into(), runs, grid, seed, &out)),
         Some(Command::Face { command }) => report(face_cmd(command)),
+        Some(Command::ExportMjcf { out }) => report(
+            std::fs::write(
+                &out,
+                shisen::mjcf::mjcf(&shisen::body::BodyPlan::default(), shisen::sim::DT),
+            )
+            .with_context(|| format!("cannot write {}", out.display())),
+        ),
         Some(Command::Soak { minutes, seed }) => match soak_cmd(minutes, seed) {
             Ok(true) => ExitCode::SUCCESS,
             Ok(false) => ExitCode::from(1),

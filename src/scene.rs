@@ -600,6 +600,21 @@ pub struct Scene {
     pub expect: Vec<Expect>,
 }
 
+impl Scene {
+    /// Parse and validate scene text without touching any other file (the
+    /// first half of [`LoadedScene::from_str`]; also the fuzzing entry).
+    pub fn parse(text: &str, file: &Path) -> Result<Scene, LoadError> {
+        let mut scene: Scene = parse_ron(text, file)?;
+        if scene.name.is_empty() {
+            scene.name = file
+                .file_stem()
+                .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+        }
+        validate(&scene, text, file)?;
+        Ok(scene)
+    }
+}
+
 /// A scene with everything it refers to resolved and validated: gains,
 /// the face model (shared, static), expanded emotion scripts.
 #[derive(Clone, Debug)]
@@ -635,13 +650,7 @@ impl LoadedScene {
 
     /// Parse and validate scene text; `dir` resolves `gains_file`.
     pub fn from_str(text: &str, file: &Path, dir: Option<&Path>) -> Result<LoadedScene, LoadError> {
-        let mut scene: Scene = parse_ron(text, file)?;
-        if scene.name.is_empty() {
-            scene.name = file
-                .file_stem()
-                .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
-        }
-        validate(&scene, text, file)?;
+        let mut scene = Scene::parse(text, file)?;
         let resolve = |rel: &Path| dir.map_or(rel.to_path_buf(), |d| d.join(rel));
         let gains = match (&scene.gains, &scene.gains_file) {
             (Some(g), _) => g.clone(),

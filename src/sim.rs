@@ -75,6 +75,10 @@ pub struct Sample {
     pub reset: bool,
 }
 
+/// Largest reference angular speed of an arm joint, rad/s (elbow extension
+/// in a punch peaks around 20-40 rad/s).
+const ARM_MAX_RATE: f32 = 40.0;
+
 /// Angular speed (rad/s) of a VH segment taken as a physics explosion.
 pub const BLOW_UP_ANGVEL: f32 = 200.0;
 
@@ -581,9 +585,13 @@ impl Sim {
                 if d.w < 0.0 {
                     d = -d;
                 }
+                // Capped at a fast human limb's rate: where the IK solution
+                // jumps (a new reach, a swivel flip) the difference is not a
+                // velocity, and a huge reference would fling the arm.
+                let velocity = (d.to_scaled_axis() / dt as f32).clamp_length_max(ARM_MAX_RATE);
                 self.targets[k] = JointTarget {
                     rotation: q,
-                    velocity: d.to_scaled_axis() / dt as f32,
+                    velocity,
                     acceleration: Vec3::ZERO,
                 };
             }

@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Seed the fuzz corpus from the project's own scene, gains, muscle-database
+# and emotion-script files, then fuzz: `fuzz/seed-corpus.sh && cargo +nightly fuzz run scene`.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+mkdir -p fuzz/corpus/scene
+cp scenes/*.ron scenes/gains/*.ron scenes/face/*.ron scenes/face/*.txt fuzz/corpus/scene/
