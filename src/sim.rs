@@ -208,16 +208,8 @@ impl Sim {
         let names: Vec<String> = world.bodies.iter().map(|b| b.name.clone()).collect();
         let mut targets = vec![JointTarget::default(); plan.segments.len()];
         let behaviour = Behaviour::new(&plan);
-        let gloves = behaviour.glove_targets(0.0);
-        for (side, glove) in gloves.into_iter().enumerate() {
-            let (s, e) = arm_ik(side, glove);
-            let base = if side == 0 {
-                seg::UPPER_ARM_L
-            } else {
-                seg::UPPER_ARM_R
-            };
-            targets[base].rotation = s;
-            targets[base + 1].rotation = e;
+        for (k, q) in arm_rotations(behaviour.glove_targets(0.0)) {
+            targets[k].rotation = q;
         }
         let mut rng = Streams::new(scene.seed);
         Sim {
@@ -571,30 +563,21 @@ impl Sim {
 
         // Arms: inverse kinematics of the planned glove positions; the
         // velocity reference comes from differencing the IK solution.
-        let gloves = self.behaviour.glove_targets(t_next);
-        for (side, glove) in gloves.into_iter().enumerate() {
-            let (s, e) = arm_ik(side, glove);
-            let base = if side == 0 {
-                seg::UPPER_ARM_L
-            } else {
-                seg::UPPER_ARM_R
-            };
-            for (k, q) in [(base, s), (base + 1, e)] {
-                let prev = self.targets[k].rotation;
-                let mut d = q * prev.inverse();
-                if d.w < 0.0 {
-                    d = -d;
-                }
-                // Capped at a fast human limb's rate: where the IK solution
-                // jumps (a new reach, a swivel flip) the difference is not a
-                // velocity, and a huge reference would fling the arm.
-                let velocity = (d.to_scaled_axis() / dt as f32).clamp_length_max(ARM_MAX_RATE);
-                self.targets[k] = JointTarget {
-                    rotation: q,
-                    velocity,
-                    acceleration: Vec3::ZERO,
-                };
+        for (k, q) in arm_rotations(self.behaviour.glove_targets(t_next)) {
+            let prev = self.targets[k].rotation;
+            let mut d = q * prev.inverse();
+            if d.w < 0.0 {
+                d = -d;
             }
+            // Capped at a fast human limb's rate: where the IK solution
+            // jumps (a new reach, a swivel flip) the difference is not a
+            // velocity, and a huge reference would fling the arm.
+            let velocity = (d.to_scaled_axis() / dt as f32).clamp_length_max(ARM_MAX_RATE);
+            self.targets[k] = JointTarget {
+                rotation: q,
+                velocity,
+                acceleration: Vec3::ZERO,
+            };
         }
 
         // Joints and physics.
@@ -676,6 +659,19 @@ impl Sim {
             reset: false,
         }
     }
+}
+
+/// Shoulder and elbow joint rotations (segment, rotation) that put the
+/// gloves at the planned positions (inverse kinematics, left then right).
+fn arm_rotations(gloves: [DVec3; 2]) -> [(usize, Quat); 4] {
+    let (ls, le) = arm_ik(0, gloves[0]);
+    let (rs, re) = arm_ik(1, gloves[1]);
+    [
+        (seg::UPPER_ARM_L, ls),
+        (seg::FOREARM_L, le),
+        (seg::UPPER_ARM_R, rs),
+        (seg::FOREARM_R, re),
+    ]
 }
 
 /// A stable identity for "the same target" across ticks (a body, or a
