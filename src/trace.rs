@@ -117,7 +117,7 @@ impl<W: Write> TraceWriter<W> {
 
     /// Offer one sample.
     pub fn push(&mut self, s: &Sample) -> io::Result<()> {
-        if self.n % self.every == 0 {
+        if self.n.is_multiple_of(self.every) {
             writeln!(self.out, "{}", row(s))?;
         }
         self.n += 1;
