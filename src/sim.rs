@@ -304,6 +304,25 @@ impl Sim {
         }
     }
 
+    /// Schedule a timeline event while running (live input). It runs in
+    /// the tick at its time, after the scene's own events of that time,
+    /// exactly as if it had been appended to the scene's timeline, so a
+    /// recorded session replays tick for tick. Events in the past run in
+    /// the next tick.
+    pub fn push_event(&mut self, ev: crate::scene::Event) {
+        let at =
+            self.next_event + self.events[self.next_event..].partition_point(|e| e.at <= ev.at);
+        self.events.insert(at, ev);
+    }
+
+    /// Replace the personality while running; its A1, A2 also set the
+    /// head law's (M8) amounts, as at construction.
+    pub fn set_personality(&mut self, p: crate::scene::Personality) {
+        self.scene.vh.oculomotor.head.attention_least = p.a1;
+        self.scene.vh.oculomotor.head.attention_most = p.a2;
+        self.scene.vh.personality = p;
+    }
+
     /// Replace the gains while running.
     pub fn set_gains(&mut self, gains: Gains) {
         self.gains = gains;
