@@ -200,7 +200,7 @@ impl Session {
             self.trace = None;
         }
         let tick = (sample.t / DT).round() as u64;
-        if tick.is_multiple_of(HISTORY_EVERY) {
+        if tick % HISTORY_EVERY == 0 {
             self.history.push_back(sample);
             while self
                 .history
