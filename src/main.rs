@@ -34,6 +34,10 @@ struct Cli {
     /// Window: open the tuning panel at start.
     #[arg(long)]
     panels: bool,
+    /// Window: open these panel sections at start (scene, attention,
+    /// personality, gains, face; repeatable).
+    #[arg(long, value_parser = ["scene", "attention", "personality", "gains", "face"])]
+    open: Vec<String>,
     /// Window: start in the orbit view.
     #[arg(long)]
     orbit: bool,
@@ -242,6 +246,7 @@ fn main() -> ExitCode {
                 exit_after: cli.exit_after,
                 screenshot: cli.screenshot,
                 panels: cli.panels,
+                open: cli.open,
                 orbit: cli.orbit,
                 overlays: cli.overlays,
             };

@@ -68,3 +68,35 @@ fn a_recorded_session_replays_byte_for_byte() {
     assert_eq!(live.len(), replay.len(), "same number of rows");
     assert!(live == replay, "replayed trace differs from the live one");
 }
+
+/// Input-to-eye latency: from the frame a throw is input to the first tick
+/// the VH's eyes have moved 0.5 deg toward it. The app adds nothing: input
+/// is applied before the frame's ticks and the frame renders their result.
+#[test]
+fn eyes_react_to_a_throw_within_a_fifth_of_a_second() {
+    let text = "Scene(duration: 3.0, vh: (behaviour: (attacks: false)))";
+    let loaded = LoadedScene::from_str(text, Path::new("quiet.ron"), None).unwrap();
+    let mut s = Session::new(loaded, SceneSource::default_scene());
+    while s.sim.time() < 1.0 {
+        s.step();
+    }
+    let before = s.sim.last().unwrap().eye_actual[0];
+    let mut throw = Intent::default();
+    throw.throw[0] = true;
+    s.apply(&throw);
+    let t0 = s.sim.time();
+    let latency = loop {
+        s.step();
+        let now = s.sim.last().unwrap();
+        if (now.eye_actual[0] - before).length().to_degrees() > 0.5 {
+            break now.t - t0;
+        }
+        assert!(now.t - t0 < 1.0, "eyes never moved");
+    };
+    eprintln!(
+        "input-to-eye latency: {:.0} ms = {:.1} frames at 60 Hz",
+        latency * 1e3,
+        latency * 60.0
+    );
+    assert!(latency < 0.2, "latency {latency} s");
+}

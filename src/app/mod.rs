@@ -43,6 +43,8 @@ pub struct AppOptions {
     pub screenshot: Option<PathBuf>,
     /// Start with the tuning panel open.
     pub panels: bool,
+    /// Panel sections to open at start (implies `panels`); empty: the defaults.
+    pub open: Vec<String>,
     /// Start in the orbit view.
     pub orbit: bool,
     /// Overlays on at start (gaze rays, saliency labels).
@@ -91,9 +93,13 @@ pub fn run(opts: AppOptions) -> anyhow::Result<()> {
             if let Some(p) = &source.path {
                 panels.scene_path = p.display().to_string();
             }
-            let show_panels = opts.panels;
+            let show_panels = opts.panels || !opts.open.is_empty();
+            let session = Session::new(loaded, source);
+            if !opts.open.is_empty() {
+                panels.open_sections(&opts.open, &session.sim.gains);
+            }
             Ok(Box::new(ShisenApp {
-                session: Session::new(loaded, source),
+                session,
                 collector: Collector::new(bindings),
                 pads: Pads::new(),
                 viewport: None,
@@ -222,6 +228,7 @@ impl eframe::App for ShisenApp {
             egui::Panel::right("tuning")
                 .resizable(true)
                 .default_size(420.0)
+                .min_size(380.0)
                 .show(ui, |ui| {
                     panels::tuning(ui, &mut self.session, &mut self.panels, viewport);
                 });

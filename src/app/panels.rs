@@ -21,8 +21,12 @@ pub struct PanelState {
     pub record_path: String,
     /// Trace output field.
     pub trace_path: String,
+    /// Gains file field.
+    pub gains_path: String,
     /// Last status or error message (errors in red).
     pub status: Option<(String, bool)>,
+    /// Sections open at start: `scene`, `attention`, `personality`, `gains`, `face`.
+    pub open: Vec<String>,
     emotion: Emotion,
     intensity: f32,
     speed: Speed,
@@ -35,7 +39,9 @@ impl Default for PanelState {
             scene_path: "scenes/look_sequence.ron".into(),
             record_path: "session.ron".into(),
             trace_path: "trace.csv".into(),
+            gains_path: "scenes/gains/default.ron".into(),
             status: None,
+            open: vec!["scene".into(), "attention".into()],
             emotion: Emotion::Happiness,
             intensity: 0.8,
             speed: Speed::Typical,
@@ -45,6 +51,18 @@ impl Default for PanelState {
 }
 
 impl PanelState {
+    /// Open these sections at start (`gains` also shows a neck step response).
+    pub fn open_sections(&mut self, sections: &[String], gains: &crate::control::Gains) {
+        self.open = sections.to_vec();
+        if self.open.iter().any(|s| s == "gains") {
+            self.step = Some(step_response(gains, Group::Neck));
+        }
+    }
+
+    fn is_open(&self, section: &str) -> bool {
+        self.open.iter().any(|s| s == section)
+    }
+
     /// Show a message (an error if `error`).
     pub fn say(&mut self, msg: impl Into<String>, error: bool) {
         let msg = msg.into();
@@ -113,20 +131,25 @@ pub fn tuning(
             };
             ui.label(RichText::new(msg).color(colour));
         }
-        egui::CollapsingHeader::new("Scene and run")
-            .default_open(true)
-            .show(ui, |ui| run(ui, s, st, view));
-        egui::CollapsingHeader::new("Attention")
-            .default_open(true)
-            .show(ui, |ui| attention(ui, s));
+        let header =
+            |name: &str, key: &str| egui::CollapsingHeader::new(name).default_open(st.is_open(key));
+        let (scene_h, attention_h, personality_h, gains_h, face_h) = (
+            header("Scene and run", "scene"),
+            header("Attention", "attention"),
+            header("Personality", "personality"),
+            header("PD gains", "gains"),
+            header("Face", "face"),
+        );
         let recording = s.recorder.is_some();
-        egui::CollapsingHeader::new("Personality").show(ui, |ui| {
+        scene_h.show(ui, |ui| run(ui, s, st, view));
+        attention_h.show(ui, |ui| attention(ui, s));
+        personality_h.show(ui, |ui| {
             ui.add_enabled_ui(!recording, |ui| personality(ui, s));
         });
-        egui::CollapsingHeader::new("PD gains").show(ui, |ui| {
+        gains_h.show(ui, |ui| {
             ui.add_enabled_ui(!recording, |ui| gains(ui, s, st));
         });
-        egui::CollapsingHeader::new("Face").show(ui, |ui| face(ui, s, st));
+        face_h.show(ui, |ui| face(ui, s, st));
     });
 }
 
@@ -272,12 +295,19 @@ fn attention(ui: &mut egui::Ui, s: &Session) {
             ui.add(egui::ProgressBar::new((score / top) as f32).text(format!("{score:.3}")));
         });
     }
+    // The action's request carries the personality's amount for it (gaze.md 5).
+    let pers = &s.sim.scene.vh.personality;
+    let top_down = match last.action {
+        crate::scene::ActionKind::Idle => pers.a_face,
+        crate::scene::ActionKind::Guard => pers.a_guard,
+        crate::scene::ActionKind::Attack => pers.a_attack,
+    };
     ui.horizontal(|ui| {
         ui.add_sized([90.0, 16.0], egui::Label::new("top-down"));
         ui.add(
-            egui::ProgressBar::new((last.amount / top) as f32)
+            egui::ProgressBar::new((top_down / top.max(top_down)) as f32)
                 .fill(egui::Color32::from_rgb(90, 140, 60))
-                .text(format!("{:.3} ({:?})", last.amount, last.action)),
+                .text(format!("{top_down:.3} ({:?})", last.action)),
         );
     });
 }
@@ -309,6 +339,19 @@ fn personality(ui: &mut egui::Ui, s: &mut Session) {
 }
 
 fn gains(ui: &mut egui::Ui, s: &mut Session, st: &mut PanelState) {
+    ui.horizontal(|ui| {
+        ui.text_edit_singleline(&mut st.gains_path);
+        if ui.button("Load gains").clicked() {
+            let p = std::path::PathBuf::from(&st.gains_path);
+            match crate::control::Gains::load(&p) {
+                Ok(g) => {
+                    s.sim.set_gains(g);
+                    st.say(format!("gains from {}", p.display()), false);
+                }
+                Err(e) => st.say(format!("{e}"), true),
+            }
+        }
+    });
     let mut g = s.sim.gains.clone();
     let mut changed = false;
     for group in Group::ALL {

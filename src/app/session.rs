@@ -19,7 +19,7 @@ use super::record::Recorder;
 
 /// At most this much simulation time is stepped per frame, s; a slow frame
 /// makes the simulation fall behind wall time instead of stalling the UI.
-pub const MAX_STEP_PER_FRAME: f64 = 0.05;
+pub const MAX_STEP_PER_FRAME: f64 = 0.1;
 /// Slow-motion factor.
 pub const SLOW_MOTION: f64 = 0.1;
 /// Samples kept for the live plots (every 10th tick), s.
@@ -274,7 +274,7 @@ mod tests {
         let mut c = Clock::default();
         assert_eq!(c.ticks(0.0165), 16);
         assert_eq!(c.ticks(0.0005), 1, "carries the remainder");
-        assert_eq!(c.ticks(1.0), 50, "capped");
+        assert_eq!(c.ticks(1.0), 100, "capped");
         c.slow = true;
         assert_eq!(c.ticks(0.1), 10);
         c.paused = true;

@@ -99,7 +99,10 @@ impl Viewport {
                 View::First => {
                     let (o, d) = frame.camera.ray(local, size);
                     let rest = session.control.glove_rest(active_glove).as_vec3();
-                    if d.z.abs() > 1e-4 {
+                    // Follow the pointer's motion (a pointer resting over the
+                    // view at start does not grab the glove).
+                    let moving = ui.input(|i| i.pointer.is_moving());
+                    if moving && d.z.abs() > 1e-4 {
                         let hit = o + d * ((rest.z - o.z) / d.z);
                         pointer.glove_offset = Some(Vec3::new(hit.x - rest.x, hit.y - rest.y, 0.0));
                     }

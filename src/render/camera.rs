@@ -29,7 +29,7 @@ impl View {
     pub const ORBIT: View = View::Orbit {
         yaw: 0.9,
         pitch: 0.25,
-        distance: 1.9,
+        distance: 2.2,
     };
 
     /// Parse `first` or `orbit`.
