@@ -70,7 +70,8 @@ fn a_recorded_session_replays_byte_for_byte() {
 }
 
 /// Input-to-eye latency: from the frame a throw is input to the first tick
-/// the VH's eyes have moved 0.5 deg toward it. The app adds nothing: input
+/// the VH's eyes have moved 2 deg (a saccade toward the glove, not fixation
+/// noise). The app adds nothing: input
 /// is applied before the frame's ticks and the frame renders their result.
 #[test]
 fn eyes_react_to_a_throw_within_a_fifth_of_a_second() {
@@ -88,15 +89,16 @@ fn eyes_react_to_a_throw_within_a_fifth_of_a_second() {
     let latency = loop {
         s.step();
         let now = s.sim.last().unwrap();
-        if (now.eye_actual[0] - before).length().to_degrees() > 0.5 {
+        if (now.eye_actual[0] - before).length().to_degrees() > 2.0 {
             break now.t - t0;
         }
         assert!(now.t - t0 < 1.0, "eyes never moved");
     };
     eprintln!(
-        "input-to-eye latency: {:.0} ms = {:.1} frames at 60 Hz",
+        "input-to-eye latency: {:.0} ms = {:.1} frames at 60 Hz (gaze on {})",
         latency * 1e3,
-        latency * 60.0
+        latency * 60.0,
+        s.sim.last().unwrap().gaze_target
     );
     assert!(latency < 0.2, "latency {latency} s");
 }

@@ -219,29 +219,11 @@ impl eframe::App for ShisenApp {
             v.overlays.saliency_labels = self.opts.overlays;
             v
         });
-        let render_ms = viewport.render_ms;
 
-        egui::Panel::top("hud").show(ui, |ui| {
-            panels::hud(ui, &self.session, self.pads.names().len(), render_ms);
-        });
-        if self.show_panels {
-            egui::Panel::right("tuning")
-                .resizable(true)
-                .default_size(420.0)
-                .min_size(380.0)
-                .show(ui, |ui| {
-                    panels::tuning(ui, &mut self.session, &mut self.panels, viewport);
-                });
-        }
+        // Input -> intent -> events, then the clock steps the simulation;
+        // the frame drawn below shows the result.
         let typing = ctx.egui_wants_keyboard_input();
-        let (pointer, wheel) = egui::CentralPanel::default()
-            .frame(egui::Frame::NONE)
-            .show(ui, |ui| {
-                viewport.show(ui, rs, &self.session, self.collector.active_glove)
-            })
-            .inner;
-
-        // Input -> intent -> events, then the clock steps the simulation.
+        let (pointer, wheel) = viewport.pointer(&ctx, &self.session, self.collector.active_glove);
         let now = Instant::now();
         let pad = self.pads.poll(now);
         let (held, pressed) = if typing {
@@ -280,6 +262,26 @@ impl eframe::App for ShisenApp {
         let wall = now.duration_since(self.last).as_secs_f64();
         self.last = now;
         self.session.advance(wall);
+
+        let Some(viewport) = self.viewport.as_mut() else {
+            return;
+        };
+        let render_ms = viewport.render_ms;
+        egui::Panel::top("hud").show(ui, |ui| {
+            panels::hud(ui, &self.session, self.pads.names().len(), render_ms);
+        });
+        if self.show_panels {
+            egui::Panel::right("tuning")
+                .resizable(true)
+                .default_size(420.0)
+                .min_size(380.0)
+                .show(ui, |ui| {
+                    panels::tuning(ui, &mut self.session, &mut self.panels, viewport);
+                });
+        }
+        egui::CentralPanel::default()
+            .frame(egui::Frame::NONE)
+            .show(ui, |ui| viewport.draw(ui, rs, &self.session));
         self.ci_exit(&ctx);
         ctx.request_repaint();
     }

@@ -1,6 +1,6 @@
-//! The 3D viewport: renders the session with the shared wgpu device into
-//! the renderer's texture, shows it as an egui image, turns the pointer
-//! into a glove position (first person) or an orbit (orbit view), and
+//! The 3D viewport: turns the pointer into a glove position (first person)
+//! or an orbit (orbit view), renders the session with the shared wgpu
+//! device into the renderer's texture, shows it as an egui image, and
 //! paints the saliency labels.
 
 use eframe::egui;
@@ -8,7 +8,7 @@ use eframe::egui_wgpu;
 use glam::{Vec2, Vec3};
 
 use crate::input::Pointer;
-use crate::render::{Frame, Overlays, Renderer, View};
+use crate::render::{Camera, Frame, Overlays, Renderer, View};
 
 use super::session::Session;
 
@@ -20,8 +20,10 @@ pub struct Viewport {
     pub view: View,
     /// Overlay toggles.
     pub overlays: Overlays,
-    /// Wall time of the last render, ms.
+    /// CPU time of the last render call (recording and submitting), ms.
     pub render_ms: f32,
+    /// Where the view was drawn last frame, and its camera.
+    last: Option<(egui::Rect, Camera)>,
 }
 
 impl Viewport {
@@ -33,6 +35,7 @@ impl Viewport {
             view,
             overlays: Overlays::default(),
             render_ms: 0.0,
+            last: None,
         }
     }
 
@@ -44,15 +47,71 @@ impl Viewport {
         };
     }
 
-    /// Draw the session into `ui`'s remaining space; returns the pointer
-    /// (glove offset under it, buttons pressed over the view) and the wheel.
-    pub fn show(
+    /// The pointer over the view as drawn last frame: the glove offset
+    /// under it (first person, while it moves), the buttons pressed over
+    /// it, and the wheel; in the orbit view dragging turns the camera and
+    /// the wheel zooms. Read before stepping, so the frame drawn after
+    /// shows this frame's input.
+    pub fn pointer(
         &mut self,
-        ui: &mut egui::Ui,
-        rs: &egui_wgpu::RenderState,
+        ctx: &egui::Context,
         session: &Session,
         active_glove: usize,
     ) -> (Pointer, f32) {
+        let mut pointer = Pointer::default();
+        let Some((rect, camera)) = self.last else {
+            return (pointer, 0.0);
+        };
+        let (pos, moving, pressed, down, delta, mut wheel) = ctx.input(|i| {
+            (
+                i.pointer.hover_pos(),
+                i.pointer.is_moving(),
+                [
+                    egui::PointerButton::Primary,
+                    egui::PointerButton::Secondary,
+                    egui::PointerButton::Middle,
+                ]
+                .map(|b| i.pointer.button_pressed(b)),
+                i.pointer.primary_down(),
+                i.pointer.delta(),
+                i.smooth_scroll_delta.y,
+            )
+        });
+        let Some(pos) = pos.filter(|p| rect.contains(*p)) else {
+            return (pointer, 0.0);
+        };
+        let size = Vec2::new(rect.width(), rect.height());
+        match &mut self.view {
+            View::First => {
+                let local = Vec2::new(pos.x - rect.min.x, pos.y - rect.min.y);
+                let (o, d) = camera.ray(local, size);
+                let rest = session.control.glove_rest(active_glove).as_vec3();
+                // Follow the pointer's motion (a pointer resting over the
+                // view at start does not grab the glove).
+                if moving && d.z.abs() > 1e-4 {
+                    let hit = o + d * ((rest.z - o.z) / d.z);
+                    pointer.glove_offset = Some(Vec3::new(hit.x - rest.x, hit.y - rest.y, 0.0));
+                }
+                pointer.pressed = pressed;
+            }
+            View::Orbit {
+                yaw,
+                pitch,
+                distance,
+            } => {
+                if down {
+                    *yaw -= delta.x * 0.01;
+                    *pitch = (*pitch + delta.y * 0.01).clamp(-1.2, 1.4);
+                }
+                *distance = (*distance * (1.0 - wheel * 0.002)).clamp(0.3, 6.0);
+                wheel = 0.0;
+            }
+        }
+        (pointer, wheel)
+    }
+
+    /// Draw the session into `ui`'s remaining space.
+    pub fn draw(&mut self, ui: &mut egui::Ui, rs: &egui_wgpu::RenderState, session: &Session) {
         let rect = ui.available_rect_before_wrap();
         let ppp = ui.ctx().pixels_per_point();
         let px = (
@@ -83,51 +142,13 @@ impl Viewport {
             }
         };
         self.texture = Some((id, px));
-        let response = ui.put(
+        ui.put(
             rect,
             egui::Image::new(egui::load::SizedTexture::new(id, rect.size()))
                 .sense(egui::Sense::click_and_drag()),
         );
-
+        self.last = Some((rect, frame.camera));
         let size = Vec2::new(rect.width(), rect.height());
-        let mut pointer = Pointer::default();
-        let mut wheel = 0.0;
-        if let Some(pos) = response.hover_pos() {
-            let local = Vec2::new(pos.x - rect.min.x, pos.y - rect.min.y);
-            wheel = ui.input(|i| i.smooth_scroll_delta.y);
-            match &mut self.view {
-                View::First => {
-                    let (o, d) = frame.camera.ray(local, size);
-                    let rest = session.control.glove_rest(active_glove).as_vec3();
-                    // Follow the pointer's motion (a pointer resting over the
-                    // view at start does not grab the glove).
-                    let moving = ui.input(|i| i.pointer.is_moving());
-                    if moving && d.z.abs() > 1e-4 {
-                        let hit = o + d * ((rest.z - o.z) / d.z);
-                        pointer.glove_offset = Some(Vec3::new(hit.x - rest.x, hit.y - rest.y, 0.0));
-                    }
-                    ui.input(|i| {
-                        pointer.pressed = [
-                            egui::PointerButton::Primary,
-                            egui::PointerButton::Secondary,
-                            egui::PointerButton::Middle,
-                        ]
-                        .map(|b| i.pointer.button_pressed(b));
-                    });
-                }
-                View::Orbit {
-                    yaw,
-                    pitch,
-                    distance,
-                } => {
-                    let drag = response.drag_delta();
-                    *yaw -= drag.x * 0.01;
-                    *pitch = (*pitch + drag.y * 0.01).clamp(-1.2, 1.4);
-                    *distance = (*distance * (1.0 - wheel * 0.002)).clamp(0.3, 6.0);
-                    wheel = 0.0;
-                }
-            }
-        }
         let painter = ui.painter_at(rect);
         for l in &frame.labels {
             if let Some(p) = frame.camera.project(l.at, size) {
@@ -140,6 +161,5 @@ impl Viewport {
                 );
             }
         }
-        (pointer, wheel)
     }
 }
