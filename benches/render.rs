@@ -35,6 +35,19 @@ fn frame(c: &mut Criterion) {
             )
         })
     });
+    g.bench_function(
+        "frame description only (CPU: poses, face deformation, normals)",
+        |b| {
+            b.iter(|| {
+                black_box(Frame::build(
+                    &sim,
+                    View::First,
+                    Overlays::default(),
+                    16.0 / 9.0,
+                ))
+            })
+        },
+    );
     g.bench_function("frame 1280x720, no read-back", |b| {
         b.iter(|| {
             let f = Frame::build(&sim, View::First, Overlays::default(), 16.0 / 9.0);
