@@ -33,7 +33,16 @@ fn synthetic(f: u32) -> Intent {
 #[test]
 fn a_recorded_session_replays_byte_for_byte() {
     let mut s = Session::new(LoadedScene::default_scene(), SceneSource::default_scene());
+    // Tuning before the recording: the gains carry over (inlined in the
+    // recording), the personality goes back to the scene's.
+    let mut gains = s.sim.gains.clone();
+    gains.neck.kp *= 1.3;
+    s.sim.set_gains(gains.clone());
+    let mut p = s.sim.scene.vh.personality.clone();
+    p.a_face = 2.5;
+    s.sim.set_personality(p);
     s.start_recording();
+    assert_eq!(s.sim.gains, gains);
     let mut live = TraceWriter::new(Vec::new(), 1).unwrap();
     for f in 0..150u32 {
         s.apply(&synthetic(f));

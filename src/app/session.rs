@@ -133,11 +133,20 @@ impl Session {
         }
     }
 
-    /// Start the scene again (tuning kept: gains and personality in force).
+    /// Start the scene again, keeping the tuning (gains, personality,
+    /// behaviour) in force.
     pub fn restart(&mut self) {
+        self.reset(true);
+    }
+
+    /// Start the scene again with the gains in force and, unless
+    /// `keep_vh`, the VH's parameters as the scene file has them.
+    fn reset(&mut self, keep_vh: bool) {
         let mut loaded = self.loaded.clone();
         loaded.gains = self.sim.gains.clone();
-        loaded.scene.vh.personality = self.sim.scene.vh.personality.clone();
+        if keep_vh {
+            loaded.scene.vh = self.sim.scene.vh.clone();
+        }
         let reach = self.control.reach;
         let clock = self.clock;
         *self = Session {
@@ -223,8 +232,10 @@ impl Session {
     }
 
     /// Start recording: restarts the scene so the recording replays from 0.
+    /// The recording inlines the gains in force; the VH's other parameters
+    /// go back to the scene file's (the file keeps its `vh` as written).
     pub fn start_recording(&mut self) {
-        self.restart();
+        self.reset(false);
         self.recorder = Some(Recorder::new(
             &self.source.text,
             self.loaded.scene.seed,
