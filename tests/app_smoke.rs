@@ -44,3 +44,62 @@ fn window_opens_screenshots_and_exits() {
     );
     let _ = std::fs::remove_file(shot);
 }
+
+/// Real input through X: with xdotool, move the mouse over the view, click
+/// and hold a dodge key; the app logs the timeline events it pushed. It
+/// takes over the pointer, so it runs only when `SHISEN_DRIVE_INPUT=1`
+/// (.ci/run sets it under Xvfb), and needs the other window test not to
+/// run beside it (`--test-threads=1`).
+#[test]
+fn mouse_and_keyboard_drive_your_avatar() {
+    if std::env::var("SHISEN_DRIVE_INPUT").as_deref() != Ok("1") {
+        eprintln!("skipped: set SHISEN_DRIVE_INPUT=1 (takes over the X pointer)");
+        return;
+    }
+    let display = std::env::var_os("DISPLAY").is_some_and(|s| !s.is_empty());
+    let xdotool = Command::new("xdotool").arg("version").output().is_ok();
+    assert!(
+        display && xdotool,
+        "SHISEN_DRIVE_INPUT=1 needs DISPLAY and xdotool"
+    );
+    let xdo = |args: &[&str]| {
+        let _ = Command::new("xdotool").args(args).status();
+    };
+    let child = Command::new(env!("CARGO_BIN_EXE_shisen"))
+        .args(["--exit-after", "9"])
+        .env("RUST_LOG", "shisen=debug")
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("start shisen");
+    // Wait for the window, then act on it.
+    let mut found = false;
+    for _ in 0..50 {
+        std::thread::sleep(std::time::Duration::from_millis(100));
+        let out = Command::new("xdotool")
+            .args(["search", "--name", "shisen"])
+            .output()
+            .expect("xdotool");
+        if !out.stdout.is_empty() {
+            found = true;
+            break;
+        }
+    }
+    assert!(found, "window never appeared");
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    for x in (450..=650).step_by(25) {
+        xdo(&["mousemove", &x.to_string(), "350"]);
+        std::thread::sleep(std::time::Duration::from_millis(120));
+    }
+    xdo(&["click", "1"]);
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    xdo(&["search", "--name", "shisen", "windowfocus"]);
+    xdo(&["keydown", "a"]);
+    std::thread::sleep(std::time::Duration::from_millis(1200));
+    xdo(&["keyup", "a"]);
+    let out = child.wait_with_output().expect("shisen runs");
+    assert!(out.status.success());
+    let log = String::from_utf8_lossy(&out.stderr);
+    for want in ["part: LeftGlove", "Punch { hand: Left", "part: Head"] {
+        assert!(log.contains(want), "no {want:?} event in the log:\n{log}");
+    }
+}

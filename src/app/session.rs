@@ -170,6 +170,7 @@ impl Session {
     /// Push an event into the simulation now (and into the recording).
     pub fn push(&mut self, mut ev: Event) {
         ev.at = self.sim.time();
+        tracing::debug!(at = ev.at, action = ?ev.action, "input event");
         if let Some(r) = &mut self.recorder {
             r.push(&ev);
         }

@@ -65,7 +65,7 @@ impl Viewport {
         let (pos, moving, pressed, down, delta, mut wheel) = ctx.input(|i| {
             (
                 i.pointer.hover_pos(),
-                i.pointer.is_moving(),
+                i.pointer.is_moving() || i.pointer.delta() != egui::Vec2::ZERO,
                 [
                     egui::PointerButton::Primary,
                     egui::PointerButton::Secondary,
@@ -77,7 +77,14 @@ impl Viewport {
                 i.smooth_scroll_delta.y,
             )
         });
-        let Some(pos) = pos.filter(|p| rect.contains(*p)) else {
+        // Over the view and not under a popup or window on top of it.
+        let over_view = |p: &egui::Pos2| {
+            rect.contains(*p)
+                && ctx
+                    .layer_id_at(*p)
+                    .is_none_or(|l| l.order == egui::Order::Background)
+        };
+        let Some(pos) = pos.filter(over_view) else {
             return (pointer, 0.0);
         };
         let size = Vec2::new(rect.width(), rect.height());
