@@ -68,7 +68,7 @@ fn vision_attention(c: &mut Criterion) {
         let mut t = 0.0;
         group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, _| {
             b.iter(|| {
-                see(&world, &params, &mut seen);
+                see(&world, &params, [true, true], &mut seen);
                 let c = att.step(
                     &ap,
                     &seen,

@@ -21,7 +21,8 @@ pub struct BehaviourParams {
     /// the step (Poisson: p = 1 - exp(-rate dt)).
     #[serde(deserialize_with = "crate::check::non_negative")]
     pub attack_rate: f64,
-    /// Delay between the look at the target and the punch (telegraph), s.
+    /// Delay between the eyes landing on the target and the punch
+    /// (the telegraph), s.
     #[serde(deserialize_with = "crate::check::non_negative")]
     pub punch_delay: f64,
     /// Duration of the punch, out and back, s.
@@ -81,10 +82,24 @@ pub struct TopDown {
     pub amount: f64,
 }
 
+/// The stronger of two top-down requests (the action's wins ties).
+fn strongest(action: TopDown, face: TopDown) -> TopDown {
+    if face.amount > action.amount {
+        face
+    } else {
+        action
+    }
+}
+
 /// What the opponent looks like to the planner this tick.
 pub struct OpponentView<'a> {
     /// Everything the VH sees.
     pub seen: &'a [Seen],
+    /// Names of all bodies, by index.
+    pub names: &'a [String],
+    /// The gaze target the eyes are physically on (line of sight within
+    /// 2 deg at the end of the last tick), if any.
+    pub eyes_on: Option<&'a String>,
     /// Body indices of the opponent's head, left glove, right glove.
     pub parts: [usize; 3],
     /// The VH's head, torso and centre-of-mass positions (threat directions).
@@ -134,7 +149,10 @@ enum Plan {
     Attack {
         hand: usize,
         target: TopDown,
-        punch_at: f64,
+        /// Decision time; the punch waits for the eyes to land.
+        decided: f64,
+        /// When the eyes landed on the target.
+        looked: Option<f64>,
         thrown: bool,
     },
 }
@@ -170,6 +188,16 @@ impl Behaviour {
         }
     }
 
+    /// What the current action is about: the attack target or the
+    /// incoming glove (body name or point name); `None` while idle.
+    pub fn target_name<'a>(&'a self, names: &'a [String]) -> Option<&'a str> {
+        match &self.plan {
+            Plan::Idle => None,
+            Plan::Guard { threat, .. } => Some(&names[*threat]),
+            Plan::Attack { target, .. } => Some(&target.name),
+        }
+    }
+
     /// True while the VH's punch is in flight (after the telegraph).
     pub fn punching(&self) -> bool {
         matches!(self.plan, Plan::Attack { thrown: true, .. })
@@ -191,11 +219,21 @@ impl Behaviour {
         dt: f64,
         rng: &mut impl Rng,
     ) -> TopDown {
-        for h in 0..2 {
-            if self.reaches[h].as_ref().is_some_and(|r| r.done(t)) {
-                self.reaches[h] = None;
+        for r in &mut self.reaches {
+            if r.as_ref().is_some_and(|r| r.done(t)) {
+                *r = None;
             }
         }
+        // Watching the opponent's face is a standing top-down interest of a
+        // boxer (A_face); the action's request competes with it, so a boxer
+        // whose A_face exceeds A_guard keeps watching the face while it
+        // guards (the seed's "strong boxer").
+        let face = TopDown {
+            name: "head".into(),
+            body: Some(view.parts[0]),
+            offset: DVec3::ZERO,
+            amount: pers.a_face,
+        };
         // Guard pre-empts everything (a threat seen now).
         if let Some((threat, point, ttc)) = aimed_glove(p, view) {
             // The VH's glove on the side the punch comes from (the opponent's
@@ -221,7 +259,10 @@ impl Behaviour {
         }
         match self.plan.clone() {
             Plan::Guard {
-                hand, point, until, ..
+                threat,
+                hand,
+                until,
+                ..
             } => {
                 if t >= until {
                     let from = self.glove(hand, t);
@@ -234,20 +275,35 @@ impl Behaviour {
                     });
                     self.plan = Plan::Idle;
                 } else {
-                    return TopDown {
-                        name: "guard_point".into(),
-                        body: None,
-                        offset: point,
-                        amount: pers.a_guard,
-                    };
+                    // gaze.md 5: guard looks at the incoming glove.
+                    return strongest(
+                        TopDown {
+                            name: view.names[threat].clone(),
+                            body: Some(threat),
+                            offset: DVec3::ZERO,
+                            amount: pers.a_guard,
+                        },
+                        face,
+                    );
                 }
             }
             Plan::Attack {
                 hand,
                 target,
-                punch_at,
+                decided,
+                mut looked,
                 thrown,
             } => {
+                if looked.is_none() && view.eyes_on.is_some_and(|n| *n == target.name) {
+                    looked = Some(t);
+                }
+                // "Looks at the target at once, and after 200 ms throws the
+                // punch" (boxing.md): timed from when the eyes land, with a
+                // deadline in case they never do (a distraction won).
+                let punch_at = looked.map_or(decided + p.punch_delay + 0.3, |l| l + p.punch_delay);
+                if let Plan::Attack { looked: l, .. } = &mut self.plan {
+                    *l = looked;
+                }
                 if !thrown && t >= punch_at {
                     match self.punch_reach(hand, &target, view, t, p) {
                         Some(r) => {
@@ -256,7 +312,8 @@ impl Behaviour {
                             self.plan = Plan::Attack {
                                 hand,
                                 target: target.clone(),
-                                punch_at,
+                                decided,
+                                looked,
                                 thrown: true,
                             };
                         }
@@ -267,7 +324,7 @@ impl Behaviour {
                     self.plan = Plan::Idle;
                 }
                 if self.plan != Plan::Idle {
-                    return target;
+                    return strongest(target, face);
                 }
             }
             Plan::Idle => {}
@@ -297,17 +354,13 @@ impl Behaviour {
             self.plan = Plan::Attack {
                 hand,
                 target: target.clone(),
-                punch_at: t + p.punch_delay,
+                decided: t,
+                looked: None,
                 thrown: false,
             };
-            return target;
+            return strongest(target, face);
         }
-        TopDown {
-            name: "head".into(),
-            body: Some(view.parts[0]),
-            offset: DVec3::ZERO,
-            amount: pers.a_face,
-        }
+        face
     }
 
     fn punch_reach(
@@ -451,8 +504,11 @@ mod tests {
         let towards = (head - glove).normalize();
         let check = |v: DVec3| {
             let s = [seen(5, glove, v)];
+            let names: Vec<String> = (0..7).map(|i| format!("b{i}")).collect();
             let view = OpponentView {
                 seen: &s,
+                names: &names,
+                eyes_on: None,
                 parts: [4, 5, 6],
                 vh_points,
             };

@@ -115,6 +115,14 @@ impl Gains {
     }
 }
 
+/// Whether explicit PD torques with these gains are stable on an inertia
+/// `inertia` (kg m^2) at step `dt`: for the semi-implicit Euler that rapier
+/// integrates, x'' = -(kp x + kd x') / I is stable when
+/// `kp dt^2 / I + 2 kd dt / I < 4`.
+pub fn explicit_stable(g: &JointGains, inertia: f64, dt: f64) -> bool {
+    g.kp * dt * dt / inertia + 2.0 * g.kd * dt / inertia < 4.0
+}
+
 /// What a joint is asked to do this tick, relative to its parent.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JointTarget {
@@ -215,6 +223,15 @@ mod tests {
             (tau + Vec3::X).length() < 1e-5,
             "pure damping at target: {tau}"
         );
+    }
+
+    #[test]
+    fn stability_bound_separates_60hz_from_1khz_for_the_eye() {
+        // The default eye gains (omega_n 300 rad/s, zeta 1) on a 7.5 g eyeball.
+        let g = Gains::default().eye;
+        let i = 0.4 * 0.0075 * 0.011 * 0.011;
+        assert!(explicit_stable(&g, i, 0.001));
+        assert!(!explicit_stable(&g, i, 1.0 / 60.0));
     }
 
     #[test]

@@ -22,8 +22,12 @@ struct Acc {
     n: u64,
     hits: u64,
     max: f64,
+    min: Option<f64>,
     first: Option<f64>,
     bad: bool,
+    /// Telegraph: when the gaze last went onto the attack target.
+    since: Option<f64>,
+    punching: bool,
 }
 
 /// Accumulates samples for every expectation of a scene.
@@ -88,6 +92,31 @@ impl Checker {
                         a.n += 1;
                         a.max = if v.is_nan() { f64::NAN } else { a.max.max(v) };
                     }
+                }
+                Expect::AngleReaches {
+                    joint, from, to, ..
+                } => {
+                    if inside(s.t, *from, *to) {
+                        a.n += 1;
+                        a.max = a.max.max(angle(s, *joint).abs().to_degrees());
+                    }
+                }
+                Expect::Telegraph { .. } => {
+                    // The eyes are physically on the target (within 2 deg).
+                    let on_target = s.action == crate::scene::ActionKind::Attack
+                        && s.source == crate::attention::Source::TopDown
+                        && s.los_error[0].max(s.los_error[1]) < 2f64.to_radians();
+                    if !on_target {
+                        a.since = None;
+                    } else if a.since.is_none() {
+                        a.since = Some(s.t);
+                    }
+                    if s.punching && !a.punching {
+                        a.n += 1;
+                        let lead = a.since.map_or(0.0, |t0| s.t - t0);
+                        a.min = Some(a.min.map_or(lead, |m: f64| m.min(lead)));
+                    }
+                    a.punching = s.punching;
                 }
                 Expect::LineOfSight { from, to, .. } => {
                     if inside(s.t, *from, *to) {
@@ -191,6 +220,29 @@ fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
             measured: format!("max {:.2} deg", a.max),
             value: a.max,
             pass: a.n > 0 && a.max < *max_deg,
+        },
+        Expect::AngleReaches {
+            joint,
+            min_deg,
+            from,
+            to,
+        } => Verdict {
+            what: format!("|{joint:?}| reaches {min_deg} deg within [{from}, {to}] s"),
+            measured: format!("max {:.2} deg", a.max),
+            value: a.max,
+            pass: a.n > 0 && a.max >= *min_deg,
+        },
+        Expect::Telegraph { min_lead } => Verdict {
+            what: format!(
+                "eyes on the attack target (< 2 deg) >= {:.0} ms before every VH punch",
+                min_lead * 1e3
+            ),
+            measured: match a.min {
+                Some(m) => format!("{} punches, shortest lead {:.0} ms", a.n, m * 1e3),
+                None => "no punch thrown".into(),
+            },
+            value: a.min.unwrap_or(0.0),
+            pass: a.min.is_some_and(|m| m >= *min_lead),
         },
         Expect::LineOfSight { max_deg, from, to } => Verdict {
             what: format!("line-of-sight error < {max_deg} deg over [{from}, {to}] s"),

@@ -16,6 +16,8 @@ pub struct Report {
     pub ticks: u64,
     /// Simulated time, s.
     pub sim_time: f64,
+    /// Physics explosions recovered from (VH resets).
+    pub resets: u32,
 }
 
 impl Report {
@@ -55,5 +57,6 @@ pub fn run(
         verdicts: checker.verdicts(),
         ticks,
         sim_time: ticks as f64 * DT,
+        resets: sim.resets,
     })
 }

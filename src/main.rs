@@ -8,6 +8,8 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 
+use shisen::body::Group;
+use shisen::control::Gains;
 use shisen::headless;
 use shisen::render::{Headless, Overlays, View, write_png};
 use shisen::scene::LoadedScene;
@@ -70,6 +72,73 @@ enum Command {
         /// Override the scene's duration, seconds.
         #[arg(long)]
         duration: Option<f64>,
+        /// Also plot the run (gaze, eye and head angles) to this PNG.
+        #[arg(long)]
+        plot: Option<PathBuf>,
+    },
+    /// Tune PD gains: step and trajectory experiments per joint group,
+    /// metrics table, CSV and PNG plots; `--auto` improves the gains
+    /// against the stated objective and can write a gains file.
+    Tune {
+        /// Groups to tune (default: all).
+        #[arg(long, value_enum, value_delimiter = ',')]
+        group: Vec<GroupArg>,
+        /// Start from this gains file (default: the shipped gains).
+        #[arg(long)]
+        gains: Option<PathBuf>,
+        /// Start the automatic tuning from the physically based guess
+        /// instead of the current gains.
+        #[arg(long)]
+        from_guess: bool,
+        /// Improve the gains automatically.
+        #[arg(long)]
+        auto: bool,
+        /// Write the resulting gains file here.
+        #[arg(long)]
+        write_gains: Option<PathBuf>,
+        /// Folder for CSV and PNG output.
+        #[arg(long, default_value = "tune-out")]
+        out: PathBuf,
+        /// Step size, seconds.
+        #[arg(long, default_value_t = 0.001)]
+        dt: f64,
+    },
+    /// Sweep gains (and step size) for one group in parallel on all cores,
+    /// resumable; writes CSV and a plot.
+    Sweep {
+        /// The group.
+        #[arg(long, value_enum)]
+        group: GroupArg,
+        /// Number of runs.
+        #[arg(long, default_value_t = 120)]
+        runs: usize,
+        /// A regular grid instead of seeded random samples.
+        #[arg(long)]
+        grid: bool,
+        /// Seed of the random samples.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Folder for sweep.csv and sweep.png (re-running resumes).
+        #[arg(long, default_value = "sweep-out")]
+        out: PathBuf,
+    },
+    /// Face tools: export the head with morph targets, calibrate the muscle
+    /// database from subject data.
+    Face {
+        #[command(subcommand)]
+        command: FaceCommand,
+    },
+    /// Plot a trace: gaze, eye and head angles against time, with the
+    /// gaze-target switches marked.
+    Plot {
+        /// Trace CSV written by `run --trace`.
+        trace: PathBuf,
+        /// Output PNG.
+        #[arg(long)]
+        out: PathBuf,
+        /// Image size, WxH.
+        #[arg(long, default_value = "1400x900", value_parser = parse_size)]
+        size: (u32, u32),
     },
     /// Run a scene headless to a time and render a picture of it (PNG).
     Render {
@@ -93,6 +162,50 @@ enum Command {
     },
 }
 
+#[derive(Subcommand)]
+enum FaceCommand {
+    /// Export the neutral generated head to glTF (.glb) with one morph
+    /// target per muscle and ARKit-named shapes.
+    Export {
+        /// Output .glb file.
+        #[arg(long)]
+        out: PathBuf,
+        /// Mesh resolution (latitude bands).
+        #[arg(long, default_value_t = 48)]
+        rows: usize,
+    },
+    /// Turn per-subject settings (CSV: expression, subject, one column per
+    /// muscle) into a muscle database with the thesis's rule (drop values
+    /// outside mean +/- 1 SD, average the rest).
+    Calibrate {
+        /// Subject data, CSV.
+        csv: PathBuf,
+        /// Output muscle database (RON), usable as a scene's `vh.face.database`.
+        #[arg(long)]
+        out: PathBuf,
+    },
+}
+
+/// Joint groups on the command line.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+enum GroupArg {
+    Eye,
+    Neck,
+    Shoulder,
+    Elbow,
+}
+
+impl From<GroupArg> for Group {
+    fn from(g: GroupArg) -> Group {
+        match g {
+            GroupArg::Eye => Group::Eye,
+            GroupArg::Neck => Group::Neck,
+            GroupArg::Shoulder => Group::Shoulder,
+            GroupArg::Elbow => Group::Elbow,
+        }
+    }
+}
+
 /// Overlays selectable on the command line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 enum OverlayArg {
@@ -107,12 +220,12 @@ enum OverlayArg {
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once('x')
-        .ok_or_else(|| format!("expected WxH, got {s}"))?;
-    let n = |v: &str| -> Result<u32, String> {
-        match v.trim().parse::<u32>() {
-            Ok(n) if (16..=8192).contains(&n) => Ok(n),
-            _ => Err(format!("size must be 16-8192 pixels, got {v}")),
-        }
+        .ok_or_else(|| format!("expected WxH, got `{s}`"))?;
+    let n = |v: &str| {
+        v.parse::<u32>()
+            .ok()
+            .filter(|v| (64..=8192).contains(v))
+            .ok_or_else(|| format!("size must be 64-8192 pixels, got `{v}`"))
     };
     Ok((n(w)?, n(h)?))
 }
@@ -165,13 +278,27 @@ fn load(scene: &str) -> Result<LoadedScene> {
     Ok(LoadedScene::load(std::path::Path::new(scene))?)
 }
 
-fn run(
-    scene: &str,
+struct RunArgs {
+    scene: String,
     trace: Option<PathBuf>,
     every: u64,
     seed: Option<u64>,
     duration: Option<f64>,
-) -> Result<bool> {
+    plot: Option<PathBuf>,
+}
+
+fn run(a: RunArgs) -> Result<bool> {
+    let RunArgs {
+        scene,
+        trace,
+        every,
+        seed,
+        duration,
+        plot,
+    } = a;
+    let scene = scene.as_str();
+    // A plot needs a trace; write one beside the plot if none was asked for.
+    let trace = trace.or_else(|| plot.as_ref().map(|p| p.with_extension("csv")));
     let mut loaded = load(scene)?;
     if let Some(s) = seed {
         loaded.scene.seed = s;
@@ -207,6 +334,12 @@ fn run(
         secs,
         report.sim_time / secs.max(1e-9)
     );
+    if report.resets > 0 {
+        println!(
+            "warning: the physics blew up {} times; the VH was reset each time (trace column `reset`)",
+            report.resets
+        );
+    }
     for v in &report.verdicts {
         println!(
             "{}  {}: measured {}",
@@ -215,9 +348,159 @@ fn run(
             v.measured
         );
     }
+    if let (Some(p), Some(t)) = (&plot, &trace) {
+        drop(file);
+        shisen::plot::plot_trace(t, p, (1400, 900))?;
+        println!("plot written to {}", p.display());
+    }
     let passed = report.verdicts.iter().filter(|v| v.pass).count();
     println!("{passed} passed, {} failed", report.verdicts.len() - passed);
     Ok(report.passed())
+}
+
+fn report(r: Result<()>) -> ExitCode {
+    match r {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn tune_cmd(
+    groups: Vec<GroupArg>,
+    gains: Option<PathBuf>,
+    from_guess: bool,
+    auto: bool,
+    write_gains: Option<PathBuf>,
+    out: &std::path::Path,
+    dt: f64,
+) -> Result<()> {
+    use shisen::tune;
+    if !(dt.is_finite() && dt > 0.0 && dt <= 0.01) {
+        anyhow::bail!("--dt: must be in (0, 0.01] s, got {dt}");
+    }
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let mut g = match &gains {
+        Some(p) => Gains::load(p)?,
+        None => Gains::default(),
+    };
+    let groups: Vec<Group> = if groups.is_empty() {
+        Group::ALL.to_vec()
+    } else {
+        groups.into_iter().map(Group::from).collect()
+    };
+    for group in groups {
+        if auto {
+            let start = if from_guess {
+                tune::initial_guess(group)
+            } else {
+                *g.group(group)
+            };
+            let history = tune::auto_tune(group, &g, start, dt, 200);
+            let (first, last) = (history[0], history[history.len() - 1]);
+            println!(
+                "{group:?}: auto-tuned in {} improvements: kp {:.4e} -> {:.4e}, kd {:.4e} -> {:.4e}, cost {:.3} -> {:.3}, objective {}",
+                history.len() - 1,
+                first.gains.kp,
+                last.gains.kp,
+                first.gains.kd,
+                last.gains.kd,
+                first.score.cost,
+                last.score.cost,
+                if last.score.meets { "met" } else { "NOT met" }
+            );
+            *g.group_mut(group) = last.gains;
+        }
+        let o = tune::Objective::for_group(group);
+        let mut runs = Vec::new();
+        println!(
+            "{group:?} (kp {:.4e}, kd {:.4e}):",
+            g.group(group).kp,
+            g.group(group).kd
+        );
+        for e in [o.trajectory, o.step] {
+            let r = tune::run(group, e, &g, dt);
+            println!("  {}", tune::evaluate(e, &r).line());
+            let name = format!(
+                "{group:?}_{}",
+                if matches!(e, tune::Experiment::Step { .. }) {
+                    "step"
+                } else {
+                    "trajectory"
+                }
+            )
+            .to_lowercase();
+            tune::write_response_csv(&out.join(format!("{name}.csv")), &r)?;
+            runs.push((e, r));
+        }
+        let png = out.join(format!("{group:?}.png").to_lowercase());
+        tune::plot_responses(&png, group, &runs)?;
+    }
+    if let Some(p) = write_gains {
+        let text = ron::ser::to_string_pretty(&g, ron::ser::PrettyConfig::default())?;
+        std::fs::write(&p, format!("// Written by `shisen tune`.\n{text}\n"))
+            .with_context(|| format!("cannot write {}", p.display()))?;
+        println!("gains written to {}", p.display());
+    }
+    println!("CSV and plots in {}", out.display());
+    Ok(())
+}
+
+fn sweep_cmd(
+    group: Group,
+    runs: usize,
+    grid: bool,
+    seed: u64,
+    out: &std::path::Path,
+) -> Result<()> {
+    use shisen::tune;
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let points = tune::sweep_points(group, runs, grid, seed);
+    let rows = tune::sweep(group, &points, &Gains::default(), &out.join("sweep.csv"))?;
+    let best = rows
+        .iter()
+        .filter(|r| r.1.is_finite())
+        .min_by(|a, b| a.1.total_cmp(&b.1));
+    let meets = rows.iter().filter(|r| r.2).count();
+    println!("{} runs, {meets} meet the objective", rows.len());
+    if let Some((p, c, _)) = best {
+        println!(
+            "best: kp {:.4e}, kd {:.4e}, dt {} s, cost {c:.3}",
+            p.kp, p.kd, p.dt
+        );
+    }
+    tune::plot_sweep(&out.join("sweep.png"), group, &rows)?;
+    println!("CSV and plot in {}", out.display());
+    Ok(())
+}
+
+fn face_cmd(c: FaceCommand) -> Result<()> {
+    use shisen::face::{Face, calibrate, exchange, mesh::MeshParams, params::FaceParams};
+    match c {
+        FaceCommand::Export { out, rows } => {
+            if !(24..=400).contains(&rows) {
+                anyhow::bail!("--rows: must be 24-400, got {rows}");
+            }
+            let face = Face::new(MeshParams { rows }, FaceParams::default_params());
+            std::fs::write(&out, exchange::export_glb(&face))
+                .with_context(|| format!("cannot write {}", out.display()))?;
+            println!(
+                "{}: {} vertices, {} triangles, morph targets per muscle and ARKit shape",
+                out.display(),
+                face.mesh.positions.len(),
+                face.mesh.triangles.len()
+            );
+        }
+        FaceCommand::Calibrate { csv, out } => {
+            let params = calibrate::calibrate_file(&FaceParams::default_params(), &csv)?;
+            std::fs::write(&out, params.to_ron())
+                .with_context(|| format!("cannot write {}", out.display()))?;
+            println!("muscle database written to {}", out.display());
+        }
+    }
+    Ok(())
 }
 
 fn main() -> ExitCode {
@@ -265,7 +548,15 @@ fn main() -> ExitCode {
             trace_every,
             seed,
             duration,
-        }) => match run(&scene, trace, trace_every, seed, duration) {
+            plot,
+        }) => match run(RunArgs {
+            scene,
+            trace,
+            every: trace_every,
+            seed,
+            duration,
+            plot,
+        }) {
             Ok(true) => ExitCode::SUCCESS,
             Ok(false) => ExitCode::from(1),
             Err(e) => {
@@ -273,6 +564,40 @@ fn main() -> ExitCode {
                 ExitCode::from(2)
             }
         },
+        Some(Command::Tune {
+            group,
+            gains,
+            from_guess,
+            auto,
+            write_gains,
+            out,
+            dt,
+        }) => report(tune_cmd(
+            group,
+            gains,
+            from_guess,
+            auto,
+            write_gains,
+            &out,
+            dt,
+        )),
+        Some(Command::Sweep {
+            group,
+            runs,
+            grid,
+            seed,
+            out,
+        }) => report(sweep_cmd(group.into(), runs, grid, seed, &out)),
+        Some(Command::Face { command }) => report(face_cmd(command)),
+        Some(Command::Plot { trace, out, size }) => {
+            match shisen::plot::plot_trace(&trace, &out, size) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => {
+                    eprintln!("error: {e:#}");
+                    ExitCode::from(2)
+                }
+            }
+        }
         Some(Command::Render {
             scene,
             at,

@@ -163,14 +163,27 @@ pub struct VhParams {
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct FaceConfig {
-    /// Mesh resolution: latitude bands (vertices ~ 2 rows^2; 32 ~ 2k, 160 ~ 51k).
+    /// Mesh resolution of the generated head: latitude bands (vertices ~
+    /// 2 rows^2; 32 ~ 2k, 160 ~ 51k).
     #[serde(deserialize_with = "face_rows")]
     pub rows: usize,
+    /// A muscle database (RON) replacing the shipped one, relative to the
+    /// scene file (e.g. the output of `shisen face calibrate`).
+    pub database: Option<PathBuf>,
+    /// A user's head mesh (OBJ or GLB) instead of the generated one ...
+    pub mesh: Option<PathBuf>,
+    /// ... with the landmark file that places its muscles (RON).
+    pub landmarks: Option<PathBuf>,
 }
 
 impl Default for FaceConfig {
     fn default() -> Self {
-        FaceConfig { rows: 48 }
+        FaceConfig {
+            rows: 48,
+            database: None,
+            mesh: None,
+            landmarks: None,
+        }
     }
 }
 
@@ -198,6 +211,19 @@ pub enum Part {
     RightGlove,
     /// A kinematic prop declared in `bodies`.
     Body(String),
+}
+
+/// The VH's left or right (eyes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+pub enum Side {
+    /// The VH's left.
+    Left,
+    /// The VH's right.
+    Right,
+}
+
+fn opt_non_negative<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+    crate::check::non_negative(d).map(Some)
 }
 
 /// Where an opponent punch is aimed.
@@ -264,6 +290,13 @@ pub enum Action {
         #[serde(default)]
         pattern: crate::face::timing::Pattern,
     },
+    /// Play a script in the thesis's plain format (`emotion duration
+    /// speed` per line, face.md 9) from this time; the file is relative to
+    /// the scene and is expanded into `Emotion` events when the scene loads.
+    EmotionScript {
+        /// The script file.
+        file: PathBuf,
+    },
     /// Override the gaze: look at a world point until a time.
     LookAt {
         /// The point, world metres.
@@ -272,6 +305,57 @@ pub enum Action {
         /// End of the override, seconds.
         #[serde(deserialize_with = "crate::check::non_negative")]
         until: f64,
+        /// Attention amount A for the head law (M8); default the
+        /// personality's `a2` (the head faces the point).
+        #[serde(default, deserialize_with = "opt_non_negative")]
+        amount: Option<f64>,
+        /// How to shift the gaze there (default: the scene's law).
+        #[serde(default)]
+        style: Option<crate::oculomotor::GazeShiftLaw>,
+    },
+    /// Override the gaze: follow a body (by name) until a time.
+    Track {
+        /// Body name (`head`, `left_glove`, a prop...).
+        body: String,
+        /// End of the override, seconds.
+        #[serde(deserialize_with = "crate::check::non_negative")]
+        until: f64,
+    },
+    /// Move a part at constant angular speed on a horizontal circle about
+    /// a centre (a pursuit target).
+    Orbit {
+        /// What moves.
+        part: Part,
+        /// Centre of the circle, world metres.
+        #[serde(deserialize_with = "crate::check::vec3")]
+        centre: DVec3,
+        /// Angular speed about +Y (positive: toward the VH's left), deg/s.
+        #[serde(deserialize_with = "crate::check::finite")]
+        rate_deg: f64,
+        /// Duration, seconds.
+        #[serde(deserialize_with = "crate::check::positive")]
+        duration: f64,
+    },
+    /// Shut or cover one eye (`Some(Left)`, `Some(Right)`) or none (`None`).
+    Occlude {
+        /// The covered eye.
+        eye: Option<Side>,
+    },
+    /// Impose a sinusoidal neck motion (overriding the head law), e.g. to
+    /// measure the VOR: yaw and pitch amplitudes in degrees.
+    ShakeHead {
+        /// Yaw amplitude, deg.
+        #[serde(deserialize_with = "crate::check::non_negative")]
+        yaw_deg: f64,
+        /// Pitch amplitude, deg.
+        #[serde(default, deserialize_with = "crate::check::non_negative")]
+        pitch_deg: f64,
+        /// Frequency, Hz.
+        #[serde(deserialize_with = "crate::check::positive")]
+        frequency: f64,
+        /// Duration, s.
+        #[serde(deserialize_with = "crate::check::positive")]
+        duration: f64,
     },
 }
 
@@ -422,6 +506,29 @@ pub enum Expect {
         #[serde(default, deserialize_with = "opt_time")]
         to: Option<f64>,
     },
+    /// |angle| reaches at least `min_deg` at some time in [from, to].
+    AngleReaches {
+        /// Which angle.
+        joint: JointName,
+        /// Bound, degrees.
+        #[serde(deserialize_with = "crate::check::non_negative")]
+        min_deg: f64,
+        /// Window start, s.
+        #[serde(deserialize_with = "crate::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "crate::check::non_negative")]
+        to: f64,
+    },
+    /// Before every punch the VH throws, its eyes have been on the attack
+    /// target (chosen top-down during the attack, line-of-sight error under
+    /// 2 deg) for at least `min_lead` seconds: the telegraph. Fails if no
+    /// punch is thrown.
+    Telegraph {
+        /// Minimum lead, s.
+        #[serde(deserialize_with = "crate::check::non_negative")]
+        min_lead: f64,
+    },
     /// Both eyes' line-of-sight error to the gaze point stays below
     /// `max_deg` over [from, to].
     LineOfSight {
@@ -493,13 +600,16 @@ pub struct Scene {
     pub expect: Vec<Expect>,
 }
 
-/// A scene with the gains it resolved to.
+/// A scene with everything it refers to resolved and validated: gains,
+/// the face model (shared, static), expanded emotion scripts.
 #[derive(Clone, Debug)]
 pub struct LoadedScene {
     /// The scene.
     pub scene: Scene,
     /// Gains in force at start.
     pub gains: Gains,
+    /// The face model (mesh, muscles, database), shared by every run.
+    pub face: std::sync::Arc<crate::face::Face>,
     /// Where it came from (for messages).
     pub source: String,
 }
@@ -532,19 +642,96 @@ impl LoadedScene {
                 .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
         }
         validate(&scene, text, file)?;
+        let resolve = |rel: &Path| dir.map_or(rel.to_path_buf(), |d| d.join(rel));
         let gains = match (&scene.gains, &scene.gains_file) {
             (Some(g), _) => g.clone(),
-            (None, Some(rel)) => {
-                let p = dir.map_or(rel.clone(), |d| d.join(rel));
-                Gains::load(&p)?
-            }
+            (None, Some(rel)) => Gains::load(&resolve(rel))?,
             (None, None) => Gains::default(),
         };
+        expand_scripts(&mut scene, &resolve)?;
+        let face = load_face(&scene.vh.face, &resolve, text, file)?;
         Ok(LoadedScene {
             scene,
             gains,
+            face: std::sync::Arc::new(face),
             source: file.display().to_string(),
         })
+    }
+}
+
+/// Replace each `EmotionScript` event by the `Emotion` events it holds.
+fn expand_scripts(scene: &mut Scene, resolve: &dyn Fn(&Path) -> PathBuf) -> Result<(), LoadError> {
+    let mut out = Vec::with_capacity(scene.timeline.len());
+    for e in scene.timeline.drain(..) {
+        match &e.action {
+            Action::EmotionScript { file } => {
+                let steps = crate::face::script::load_script(&resolve(file))?;
+                for (at, emotion, speed) in crate::face::script::to_events(&steps, e.at) {
+                    out.push(Event {
+                        at,
+                        action: Action::Emotion {
+                            emotion,
+                            intensity: 1.0,
+                            speed,
+                            pattern: Default::default(),
+                        },
+                    });
+                }
+            }
+            _ => out.push(e),
+        }
+    }
+    scene.timeline = out;
+    Ok(())
+}
+
+/// Build the face model a scene asks for.
+fn load_face(
+    c: &FaceConfig,
+    resolve: &dyn Fn(&Path) -> PathBuf,
+    text: &str,
+    file: &Path,
+) -> Result<crate::face::Face, LoadError> {
+    use crate::face::{Face, FaceError, mesh::MeshParams, params::FaceParams};
+    let face_err = |e: FaceError| match e {
+        FaceError::Parse(l) => l,
+        other => {
+            let (line, col) = line_of(text, "face");
+            LoadError::Invalid {
+                file: file.display().to_string(),
+                line,
+                col,
+                field: "vh.face".into(),
+                message: other.to_string(),
+            }
+        }
+    };
+    let params = match &c.database {
+        Some(rel) => {
+            let p = resolve(rel);
+            let t = std::fs::read_to_string(&p).map_err(|e| LoadError::Io {
+                file: p.display().to_string(),
+                source: e,
+            })?;
+            FaceParams::parse(&t, &p).map_err(face_err)?
+        }
+        None => FaceParams::default_params(),
+    };
+    match (&c.mesh, &c.landmarks) {
+        (Some(m), Some(l)) => {
+            crate::face::import::import(&resolve(m), &resolve(l), params).map_err(face_err)
+        }
+        (None, None) => Ok(Face::new(MeshParams { rows: c.rows }, params)),
+        _ => {
+            let (line, col) = line_of(text, "mesh");
+            Err(LoadError::Invalid {
+                file: file.display().to_string(),
+                line,
+                col,
+                field: "vh.face".into(),
+                message: "`mesh` and `landmarks` go together".into(),
+            })
+        }
     }
 }
 
@@ -581,9 +768,27 @@ fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), LoadError> {
     }
     for (i, e) in scene.timeline.iter().enumerate() {
         let part = match &e.action {
-            Action::Move { part, .. } | Action::Wave { part, .. } => Some(part),
+            Action::Move { part, .. } | Action::Wave { part, .. } | Action::Orbit { part, .. } => {
+                Some(part)
+            }
             _ => None,
         };
+        if let Action::Track { body, until } = &e.action {
+            if !names.contains(&body.as_str()) {
+                return Err(err(
+                    &format!("\"{body}\""),
+                    format!("timeline[{i}].do.Track.body"),
+                    format!("no body named `{body}` (opponent parts or `bodies`)"),
+                ));
+            }
+            if *until < e.at {
+                return Err(err(
+                    "until",
+                    format!("timeline[{i}].do.Track.until"),
+                    format!("must not precede `at` ({}), got {until}", e.at),
+                ));
+            }
+        }
         if let Some(Part::Body(name)) = part
             && !scene.bodies.iter().any(|b| &b.name == name && b.kinematic)
         {
@@ -598,7 +803,7 @@ fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), LoadError> {
         {
             return Err(err(
                 "until",
-                format!("timeline[{i}].do.until"),
+                format!("timeline[{i}].do.LookAt.until"),
                 format!("must not precede `at` ({}), got {until}", e.at),
             ));
         }
@@ -609,11 +814,12 @@ fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), LoadError> {
             | Expect::GazeShareAtMost { from, to, .. }
             | Expect::GazeReaches { from, to, .. }
             | Expect::LineOfSight { from, to, .. }
+            | Expect::AngleReaches { from, to, .. }
             | Expect::ActionShare { from, to, .. } => Some((*from, *to)),
             Expect::AngleBelow { from, to, .. } => {
                 Some((from.unwrap_or(0.0), to.unwrap_or(scene.duration)))
             }
-            Expect::Finite => None,
+            Expect::Finite | Expect::Telegraph { .. } => None,
         };
         if let Some((from, to)) = window
             && (to < from || to > scene.duration + 1e-9)

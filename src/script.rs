@@ -18,6 +18,15 @@ enum Seg {
         t0: f64,
         dur: f64,
     },
+    /// Constant angular speed `rate` (rad/s) about +Y through `centre`,
+    /// starting at `centre + arm`.
+    Orbit {
+        centre: DVec3,
+        arm: DVec3,
+        rate: f64,
+        t0: f64,
+        dur: f64,
+    },
     /// Sinusoid about `centre`, starting and ending there.
     Wave {
         centre: DVec3,
@@ -31,13 +40,15 @@ enum Seg {
 impl Seg {
     fn t0(&self) -> f64 {
         match self {
-            Seg::Reach { t0, .. } | Seg::Wave { t0, .. } => *t0,
+            Seg::Reach { t0, .. } | Seg::Wave { t0, .. } | Seg::Orbit { t0, .. } => *t0,
         }
     }
 
     fn end(&self) -> f64 {
         match self {
-            Seg::Reach { t0, dur, .. } | Seg::Wave { t0, dur, .. } => t0 + dur,
+            Seg::Reach { t0, dur, .. } | Seg::Wave { t0, dur, .. } | Seg::Orbit { t0, dur, .. } => {
+                t0 + dur
+            }
         }
     }
 
@@ -45,6 +56,7 @@ impl Seg {
         match self {
             Seg::Reach { to, .. } => *to,
             Seg::Wave { centre, .. } => *centre,
+            Seg::Orbit { t0, dur, .. } => self.at(t0 + dur),
         }
     }
 
@@ -59,6 +71,13 @@ impl Seg {
                 t0,
                 ..
             } => centre + amplitude * (std::f64::consts::TAU * freq * (t - t0)).sin(),
+            Seg::Orbit {
+                centre,
+                arm,
+                rate,
+                t0,
+                ..
+            } => centre + glam::DQuat::from_rotation_y(rate * (t - t0)) * arm,
         }
     }
 }
@@ -147,6 +166,19 @@ impl Track {
         });
     }
 
+    /// Circle about `centre` (vertical axis) at `rate` rad/s from where the
+    /// body is at `t`.
+    pub fn orbit(&mut self, t: f64, centre: DVec3, rate: f64, dur: f64) {
+        let from = self.interrupt(t);
+        self.queue.push_back(Seg::Orbit {
+            centre,
+            arm: from - centre,
+            rate,
+            t0: t,
+            dur,
+        });
+    }
+
     /// Put the body at `p` now (live input), cancelling scripted motion.
     pub fn set(&mut self, p: DVec3) {
         self.queue.clear();
@@ -181,6 +213,23 @@ mod tests {
         tr.reach(0.5, DVec3::Y, 1.0);
         assert!((tr.position(0.5) - p).length() < 1e-12, "continuous");
         assert!((tr.position(2.0) - DVec3::Y).length() < 1e-12);
+    }
+
+    #[test]
+    fn orbit_keeps_radius_and_rate() {
+        let mut tr = Track::new(DVec3::new(0.0, 1.0, 2.0));
+        tr.orbit(0.0, DVec3::new(0.0, 1.0, 0.0), 0.5, 2.0);
+        let p = tr.position(1.0);
+        assert!(((p - DVec3::new(0.0, 1.0, 0.0)).length() - 2.0).abs() < 1e-12);
+        assert!(
+            (p.x.atan2(p.z) - 0.5).abs() < 1e-12,
+            "positive rate turns toward +X (left)"
+        );
+        let end = tr.position(2.0);
+        assert!(
+            (tr.position(3.0) - end).length() < 1e-12,
+            "holds where it ended"
+        );
     }
 
     #[test]

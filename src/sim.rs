@@ -11,12 +11,12 @@ use crate::attention::{Attention, GazeChoice, Source};
 use crate::behaviour::{Behaviour, OpponentView, arm_ik};
 use crate::body::{BodyPlan, Shape, seg};
 use crate::control::{Gains, JointTarget};
-use crate::face::mesh::MeshParams;
-use crate::face::params::FaceParams;
 use crate::face::tables::Emotion;
 use crate::face::{Face, FaceState};
-use crate::oculomotor::{GazeInput, Oculomotor};
-use crate::scene::{Action, ActionKind, Hand, LoadedScene, Part, PropShape, PunchTarget, Scene};
+use crate::oculomotor::{AxisCommand, GazeInput, GazeShiftLaw, Oculomotor};
+use crate::scene::{
+    Action, ActionKind, Hand, LoadedScene, Part, PropShape, PunchTarget, Scene, Side,
+};
 use crate::script::Track;
 use crate::vision::{Seen, see};
 use crate::world::{JointAngles, PropSpec, World, opp};
@@ -34,6 +34,8 @@ pub struct Sample {
     pub t: f64,
     /// The VH's action.
     pub action: ActionKind,
+    /// What the action is about (attack target, incoming glove), if any.
+    pub action_target: Option<String>,
     /// Gaze target name.
     pub gaze_target: String,
     /// Gaze point, world.
@@ -69,6 +71,43 @@ pub struct Sample {
     pub emotion: Emotion,
     /// Upper-lid closure of the blink, 0 open to 1 shut.
     pub blink: f64,
+    /// The physics blew up this tick and the VH was reset to rest.
+    pub reset: bool,
+}
+
+/// Angular speed (rad/s) of a VH segment taken as a physics explosion.
+pub const BLOW_UP_ANGVEL: f32 = 200.0;
+
+/// A scene's gaze override in force.
+#[derive(Clone, Debug)]
+struct Override {
+    /// Body to follow, or a fixed point.
+    body: Option<usize>,
+    point: DVec3,
+    until: f64,
+    amount: Option<f64>,
+    style: Option<GazeShiftLaw>,
+}
+
+/// An imposed sinusoidal neck motion.
+#[derive(Clone, Copy, Debug)]
+struct Shake {
+    amplitude: DVec2,
+    freq: f64,
+    t0: f64,
+    until: f64,
+}
+
+impl Shake {
+    fn command(&self, t: f64) -> AxisCommand {
+        let w = std::f64::consts::TAU * self.freq;
+        let ph = w * (t - self.t0);
+        AxisCommand {
+            angles: self.amplitude * ph.sin(),
+            rates: self.amplitude * (w * ph.cos()),
+            accel: self.amplitude * (-w * w * ph.sin()),
+        }
+    }
 }
 
 /// Independent random streams, one per consumer, all derived from the
@@ -108,15 +147,19 @@ pub struct Sim {
     pub behaviour: Behaviour,
     /// Eye and head control state.
     pub oculomotor: Oculomotor,
-    /// The face model (mesh, muscles, database).
-    pub face: Face,
+    /// The face model (mesh, muscles, database), shared and static.
+    pub face: std::sync::Arc<Face>,
     /// The face's evolving state (expression, blinks).
     pub face_state: FaceState,
-    look_at: Option<(DVec3, f64)>,
+    look_at: Option<Override>,
+    occluded: [bool; 2],
+    shake: Option<Shake>,
     seen: Vec<Seen>,
     targets: Vec<JointTarget>,
     rng: Streams,
     names: Vec<String>,
+    /// Times the VH was reset after a physics explosion.
+    pub resets: u32,
     last: Option<Sample>,
 }
 
@@ -170,15 +213,10 @@ impl Sim {
             targets[base].rotation = s;
             targets[base + 1].rotation = e;
         }
+        warn_unstable(&world, &loaded.gains);
         let mut rng = Streams::new(scene.seed);
-        let face = Face::new(
-            MeshParams {
-                rows: scene.vh.face.rows,
-            },
-            FaceParams::default_params(),
-        );
         Sim {
-            face,
+            face: loaded.face.clone(),
             face_state: FaceState::default(),
             oculomotor: Oculomotor::new(&scene.vh.oculomotor, &mut rng.oculomotor),
             rng,
@@ -192,9 +230,12 @@ impl Sim {
             attention: Attention::new(names.clone()),
             behaviour,
             look_at: None,
+            occluded: [false; 2],
+            shake: None,
             seen: Vec::new(),
             targets,
             names,
+            resets: 0,
             last: None,
         }
     }
@@ -287,7 +328,59 @@ impl Sim {
                         tr.punch(t, to, speed);
                     }
                 }
-                Action::LookAt { point, until } => self.look_at = Some((point, until)),
+                // Expanded into `Emotion` events when the scene loaded.
+                Action::EmotionScript { .. } => {}
+                Action::LookAt {
+                    point,
+                    until,
+                    amount,
+                    style,
+                } => {
+                    self.look_at = Some(Override {
+                        body: None,
+                        point,
+                        until,
+                        amount,
+                        style,
+                    })
+                }
+                Action::Track { body, until } => {
+                    let b = self.world.body_index(&body).expect("validated body name");
+                    self.look_at = Some(Override {
+                        body: Some(b),
+                        point: DVec3::ZERO,
+                        until,
+                        amount: None,
+                        style: None,
+                    });
+                }
+                Action::Orbit {
+                    part,
+                    centre,
+                    rate_deg,
+                    duration,
+                } => {
+                    let b = self.part_body(&part);
+                    if let Some(tr) = self.track_mut(b) {
+                        tr.orbit(t, centre, rate_deg.to_radians(), duration);
+                    }
+                }
+                Action::Occlude { eye } => {
+                    self.occluded = [eye == Some(Side::Left), eye == Some(Side::Right)];
+                }
+                Action::ShakeHead {
+                    yaw_deg,
+                    pitch_deg,
+                    frequency,
+                    duration,
+                } => {
+                    self.shake = Some(Shake {
+                        amplitude: DVec2::new(yaw_deg, pitch_deg) * (std::f64::consts::PI / 180.0),
+                        freq: frequency,
+                        t0: t,
+                        until: t + duration,
+                    })
+                }
                 Action::Emotion {
                     emotion,
                     intensity,
@@ -302,6 +395,20 @@ impl Sim {
                 ),
             }
         }
+    }
+
+    /// Recover from a physics explosion: the VH back at rest in its rest
+    /// pose, its controllers restarted; the opponent, props and the scene's
+    /// timeline carry on. Counted in [`Sim::resets`].
+    pub fn reset_vh(&mut self) {
+        tracing::warn!(t = self.time(), "physics blew up: VH reset to rest");
+        self.world.reset_vh();
+        self.oculomotor = Oculomotor::new(&self.scene.vh.oculomotor, &mut self.rng.oculomotor);
+        self.behaviour = Behaviour::new(&self.world.plan);
+        for t in &mut self.targets {
+            *t = JointTarget::default();
+        }
+        self.resets += 1;
     }
 
     /// Schedule a timeline event while running (live input). It runs in
@@ -341,13 +448,21 @@ impl Sim {
         }
 
         // Vision.
-        see(&self.world, &self.scene.vh.vision, &mut self.seen);
+        let open = self.occluded.map(|o| !o);
+        see(&self.world, &self.scene.vh.vision, open, &mut self.seen);
 
         // Behaviour (top-down request, glove targets).
         let head_c = self.world.seg(seg::HEAD).translation().as_dvec3();
         let torso_c = self.world.seg(seg::TORSO).translation().as_dvec3();
+        let eyes_on = self
+            .last
+            .as_ref()
+            .filter(|s| s.los_error[0].max(s.los_error[1]) < 2f64.to_radians())
+            .map(|s| &s.gaze_target);
         let view = OpponentView {
             seen: &self.seen,
+            names: &self.names,
+            eyes_on,
             parts: self.world.opponent,
             vh_points: [head_c, torso_c, (head_c + torso_c) / 2.0],
         };
@@ -363,26 +478,29 @@ impl Sim {
         // Attention (or the scene's override).
         let world = &self.world;
         let body_pos = |b: usize| world.rb(b).translation().as_dvec3();
-        let choice = match self.look_at {
-            Some((point, until)) if t < until => {
+        // Attention always runs (its scores and habituation stay live); a
+        // scene's override, while in force, replaces its choice.
+        let chosen = self.attention.step(
+            &self.scene.vh.attention,
+            &self.seen,
+            &top_down,
+            body_pos,
+            t,
+            dt,
+        );
+        let choice = match &self.look_at {
+            Some(o) if t < o.until => {
                 let c = GazeChoice {
-                    name: "point".into(),
-                    body: None,
-                    point,
-                    amount: self.scene.vh.personality.a2,
+                    name: o.body.map_or("point".into(), |b| self.names[b].clone()),
+                    body: o.body,
+                    point: o.body.map_or(o.point, body_pos),
+                    amount: o.amount.unwrap_or(self.scene.vh.personality.a2),
                     source: Source::Override,
                 };
                 self.attention.force(c.clone(), t);
                 c
             }
-            _ => self.attention.step(
-                &self.scene.vh.attention,
-                &self.seen,
-                &top_down,
-                body_pos,
-                t,
-                dt,
-            ),
+            _ => chosen,
         };
 
         // Oculomotor: eye and neck targets.
@@ -402,7 +520,17 @@ impl Sim {
                 DVec2::new(a.yaw, a.pitch)
             }),
             neck_angles: self.world.joint_angles(seg::HEAD),
-            visible: [true, true],
+            visible: self.occluded.map(|o| !o),
+            style: self
+                .look_at
+                .as_ref()
+                .filter(|o| t < o.until)
+                .and_then(|o| o.style)
+                .unwrap_or(self.scene.vh.oculomotor.gaze_shift),
+            neck_override: self
+                .shake
+                .filter(|s| t < s.until)
+                .map(|s| s.command(t + dt)),
         };
         let out = self.oculomotor.step(
             &self.scene.vh.oculomotor,
@@ -452,13 +580,18 @@ impl Sim {
         self.world.apply_control(&self.gains, &self.targets);
         self.world.step();
         self.tick += 1;
+        let reset = self.world.blown_up(BLOW_UP_ANGVEL);
+        if reset {
+            self.reset_vh();
+        }
 
         let neck_target = JointAngles {
             yaw: out.neck.angles.x,
             pitch: out.neck.angles.y,
             roll: 0.0,
         };
-        let sample = self.sample(&choice, &out.eyes.map(|e| e.angles), neck_target);
+        let mut sample = self.sample(&choice, &out.eyes.map(|e| e.angles), neck_target);
+        sample.reset = reset;
         self.last = Some(sample);
         self.last.as_ref().expect("just set")
     }
@@ -500,6 +633,7 @@ impl Sim {
         Sample {
             t: self.time(),
             action: self.behaviour.action(),
+            action_target: self.behaviour.target_name(&self.names).map(String::from),
             gaze_target: choice.name.clone(),
             gaze_point: choice.point,
             source: choice.source,
@@ -517,6 +651,24 @@ impl Sim {
             head_hit,
             emotion: self.face_state.emotion,
             blink: self.face_state.blink.closure(&self.face.params.blink),
+            reset: false,
+        }
+    }
+}
+
+/// Warn about gains beyond the explicit-integration stability bound (they
+/// will blow up; the run survives through [`Sim::reset_vh`]).
+fn warn_unstable(world: &World, gains: &Gains) {
+    for (s, segm) in world.plan.segments.iter().enumerate() {
+        let Some(group) = segm.group else { continue };
+        let i = world.subtree_inertia(s, world.pivot(s));
+        let smallest = i.x_axis.x.min(i.y_axis.y).min(i.z_axis.z) as f64;
+        if !crate::control::explicit_stable(gains.group(group), smallest, world.dt) {
+            tracing::warn!(
+                "{group:?} gains exceed the explicit stability bound at dt = {} s on {} (I = {smallest:.3e} kg m^2): expect blow-ups and resets",
+                world.dt,
+                segm.name
+            );
         }
     }
 }

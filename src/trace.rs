@@ -26,6 +26,9 @@ const COLUMNS: &[(&str, Cell)] = &[
     ("action", |s, o| {
         o.push_str(&format!("{:?}", s.action).to_lowercase())
     }),
+    ("action_target", |s, o| {
+        o.push_str(s.action_target.as_deref().unwrap_or(""))
+    }),
     ("gaze_target", |s, o| o.push_str(&s.gaze_target)),
     ("gaze_x", |s, o| num(o, s.gaze_point.x)),
     ("gaze_y", |s, o| num(o, s.gaze_point.y)),
@@ -60,6 +63,7 @@ const COLUMNS: &[(&str, Cell)] = &[
         let _ = write!(o, "{:?}", s.emotion);
     }),
     ("blink", |s, o| num(o, s.blink)),
+    ("reset", |s, o| o.push_str(if s.reset { "1" } else { "0" })),
     ("salient_1", |s, o| top(o, s, 0)),
     ("salient_2", |s, o| top(o, s, 1)),
     ("salient_3", |s, o| top(o, s, 2)),

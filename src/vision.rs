@@ -98,9 +98,9 @@ pub struct Seen {
     pub distance: f64,
     /// Seen by the left / right eye.
     pub by_eye: [bool; 2],
-    /// Velocity relative to the head (head frame).
+    /// Velocity in the head's axes (own head motion compensated).
     pub rel_velocity: DVec3,
-    /// Angular velocity relative to the head (head frame).
+    /// Angular velocity in the head's axes.
     pub rel_angvel: DVec3,
     /// The three terms of (M1): translation, expansion, rotation.
     pub terms: [f64; 3],
@@ -169,15 +169,13 @@ pub fn in_field(f: &FieldOfView, los: DVec3, dir: DVec3, left: bool) -> bool {
     yaw_ok && pitch_ok
 }
 
-/// Everything the VH sees now, with saliency. `out` is reused between ticks.
-pub fn see(world: &World, p: &VisionParams, out: &mut Vec<Seen>) {
+/// Everything the VH sees now, with saliency. `open` says which eyes are
+/// open (a shut or covered eye sees nothing). `out` is reused between ticks.
+pub fn see(world: &World, p: &VisionParams, open: [bool; 2], out: &mut Vec<Seen>) {
     out.clear();
     let head = world.seg(seg::HEAD);
     let head_rot = head.rotation().as_dquat();
     let head_inv = head_rot.inverse();
-    let head_com = head.center_of_mass().as_dvec3();
-    let head_v = head.linvel().as_dvec3();
-    let head_w = head.angvel().as_dvec3();
     let eyes = [seg::EYE_L, seg::EYE_R].map(|e| {
         let rb = world.seg(e);
         let pos = rb.translation();
@@ -200,6 +198,9 @@ pub fn see(world: &World, p: &VisionParams, out: &mut Vec<Seen>) {
         }
         let mut by_eye = [false; 2];
         for (k, (eye_pos, los)) in eyes.iter().enumerate() {
+            if !open[k] {
+                continue;
+            }
             let ray_dir = pos - eye_pos.as_dvec3();
             if !in_field(&p.field, *los, head_inv * ray_dir.normalize(), k == 0) {
                 continue;
@@ -211,11 +212,13 @@ pub fn see(world: &World, p: &VisionParams, out: &mut Vec<Seen>) {
         }
         let velocity = rb.linvel().as_dvec3();
         let angvel = rb.angvel().as_dvec3();
-        // Head-relative motion (gaze.md 4): subtract the head's own velocity
-        // field at the body's position, so turning the head does not make the
-        // world salient.
-        let rel_v = head_inv * (velocity - (head_v + head_w.cross(pos - head_com)));
-        let rel_w = head_inv * (angvel - head_w);
+        // Head-relative motion (gaze.md 4): the body's own motion, in the
+        // head's axes. The agent's own head motion is compensated (as the
+        // vestibular signal and efference copy do for a person), so turning
+        // or rocking the head makes nothing salient; only bodies that move
+        // in the world do.
+        let rel_v = head_inv * velocity;
+        let rel_w = head_inv * angvel;
         let dir_head = head_inv * (to / distance);
         let mut terms = saliency_terms(rel_v, rel_w, dir_head);
         if p.distance_scaling {

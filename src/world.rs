@@ -431,6 +431,38 @@ impl World {
         })
     }
 
+    /// A physics explosion: non-finite state (rapier quarantined a body),
+    /// or a VH segment spinning faster than `max_angvel` rad/s (a saccade
+    /// peaks near 9 rad/s; absurd gains or an integration blow-up give
+    /// thousands).
+    pub fn blown_up(&self, max_angvel: f32) -> bool {
+        !self.phys.quarantine().is_empty()
+            || !self.is_finite()
+            || self.plan.segments.iter().enumerate().any(|(i, _)| {
+                let w = self.seg(i).angvel();
+                !w.is_finite() || w.length() > max_angvel
+            })
+    }
+
+    /// Put the VH back in its rest pose, at rest: every segment re-enabled
+    /// (rapier disables quarantined bodies), its pose reset, velocities and
+    /// user forces zeroed, joint warm-start impulses cleared.
+    pub fn reset_vh(&mut self) {
+        for (i, s) in self.plan.segments.iter().enumerate() {
+            let h = self.bodies[i].handle;
+            let rb = &mut self.phys.bodies[h];
+            rb.set_enabled(true);
+            rb.set_position(Pose::from_parts(s.centre, Quat::IDENTITY), true);
+            rb.set_linvel(Vec3::ZERO, true);
+            rb.set_angvel(Vec3::ZERO, true);
+            rb.reset_forces(true);
+            rb.reset_torques(true);
+        }
+        for (_, j) in self.phys.impulse_joints.iter_mut() {
+            j.impulses = Default::default();
+        }
+    }
+
     /// Whether two bodies are touching now.
     pub fn in_contact(&self, a: usize, b: usize) -> bool {
         self.phys

@@ -140,3 +140,41 @@ fn trace_has_the_documented_header() {
         );
     }
 }
+
+#[test]
+fn face_export_and_calibrate_write_their_files() {
+    let dir = std::env::temp_dir().join(format!("shisen-face-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let glb = dir.join("head.glb");
+    let (code, out, err) = shisen(&[
+        "face",
+        "export",
+        "--out",
+        glb.to_str().unwrap(),
+        "--rows",
+        "32",
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    let bytes = std::fs::read(&glb).unwrap();
+    assert_eq!(&bytes[..4], b"glTF");
+    let csv = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/face/thesis_appendix_a.csv");
+    let ron = dir.join("db.ron");
+    let (code, out, err) = shisen(&[
+        "face",
+        "calibrate",
+        csv.to_str().unwrap(),
+        "--out",
+        ron.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{out}{err}");
+    // the written database loads as a scene's face database
+    let scene = write_scene(
+        "db_scene.ron",
+        &format!(
+            "Scene(duration: 0.05, vh: (face: (database: \"{}\")))",
+            ron.display()
+        ),
+    );
+    let (code, out, err) = shisen(&["run", &scene, "--headless"]);
+    assert_eq!(code, 0, "{out}{err}");
+}

@@ -139,3 +139,37 @@ fn look_sequence_eyes_and_neck_settle() {
     }
     assert!(neck_moves >= 2, "the head turned out and back");
 }
+
+/// Absurd gains blow the physics up; the run detects it, reports it in the
+/// trace and the report, resets the VH, and never produces NaN.
+#[test]
+fn a_physics_explosion_is_detected_and_the_vh_reset() {
+    let text = "Scene(duration: 1.0, gains: Gains(
+        eye: (kp: 50.0, kd: 0.5), neck: (kp: 305.0, kd: 15.0),
+        shoulder: (kp: 155.0, kd: 12.0), elbow: (kp: 58.0, kd: 3.9)),
+        expect: [Finite])";
+    let loaded = LoadedScene::from_str(text, Path::new("absurd.ron"), None).unwrap();
+    let mut buf = Vec::new();
+    let report = headless::run(&loaded, None, Some(&mut buf), 1).unwrap();
+    let trace = String::from_utf8(buf).unwrap();
+    let col = trace
+        .lines()
+        .next()
+        .unwrap()
+        .split(',')
+        .position(|c| c == "reset")
+        .unwrap();
+    let flagged = trace
+        .lines()
+        .skip(1)
+        .filter(|l| l.split(',').nth(col) == Some("1"))
+        .count();
+    println!(
+        "absurd eye gains: {} resets in 1 s, {flagged} flagged rows",
+        report.resets
+    );
+    assert!(report.resets > 0);
+    assert_eq!(flagged as u32, report.resets);
+    assert!(report.passed(), "state stays finite: {:?}", report.verdicts);
+    assert!(!trace.contains("NaN"));
+}

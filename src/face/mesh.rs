@@ -18,6 +18,7 @@
 //! Frame: metres, +Z forward, +Y up, +X the agent's left, origin between
 //! the eyeball centres (at (+/-0.03095, 0, 0)).
 
+use super::muscle::lid_margin;
 use glam::Vec3;
 use std::collections::HashMap;
 
@@ -90,6 +91,8 @@ pub struct Landmarks {
     pub eye_outer_corner: Vec3,
     pub upper_lid_mid: Vec3,
     pub lower_lid_mid: Vec3,
+    /// Centre of the left eyeball.
+    pub eye_centre: Vec3,
     pub mouth_corner: Vec3,
     pub mouth_centre: Vec3,
     pub upper_lip: Vec3,
@@ -260,8 +263,8 @@ fn opening_warp(x: f32, y: f32, side: SlitSide, corners: &[(f32, f32); 3]) -> f3
             let w = 0.5 * (hi - lo);
             let u = 1.0 - ((x - c) / w).powi(2);
             let (amp, r) = match side {
-                SlitSide::Upper => (UPPER_LID_H * u.powf(0.6), 0.010),
-                SlitSide::Lower => (-LOWER_LID_H * u.powf(0.8), 0.008),
+                SlitSide::Upper => (UPPER_LID_H * lid_margin(u, true), 0.010),
+                SlitSide::Lower => (-LOWER_LID_H * lid_margin(u, false), 0.008),
             };
             dy += amp * (1.0 - y.abs() / r).max(0.0);
         }
@@ -504,15 +507,8 @@ impl HeadMesh {
         }
         let normals = compute_normals(&positions, &triangles);
 
-        let lid_zone = [EYE_X, -EYE_X].map(|ex| {
-            (0..positions.len() as u32)
-                .filter(|&i| {
-                    let p = positions[i as usize];
-                    p.z > 0.0 && ((p.x - ex) / SHELL[0]).powi(2) + (p.y / SHELL[1]).powi(2) < 1.0
-                })
-                .collect()
-        });
         let landmarks = landmarks(&positions, &rims);
+        let lid_zone = lid_zone(&positions, landmarks.eye_centre);
         HeadMesh {
             positions,
             normals,
@@ -522,6 +518,20 @@ impl HeadMesh {
             lid_zone,
         }
     }
+}
+
+/// Vertices of each eye's lid zone (0 left, 1 right): in front of the
+/// eyeball centre (`eye_centre` is the left one; the right is its mirror)
+/// and inside the lid shell's outline. The rig keeps them off the eyeball.
+pub fn lid_zone(positions: &[Vec3], eye_centre: Vec3) -> [Vec<u32>; 2] {
+    [eye_centre, mirror(eye_centre)].map(|c| {
+        (0..positions.len() as u32)
+            .filter(|&i| {
+                let d = positions[i as usize] - c;
+                d.z > 0.0 && (d.x / SHELL[0]).powi(2) + (d.y / SHELL[1]).powi(2) < 1.0
+            })
+            .collect()
+    })
 }
 
 /// Area-weighted unit vertex normals.
@@ -562,6 +572,7 @@ fn landmarks(positions: &[Vec3], rims: &Rims) -> Landmarks {
         eye_outer_corner: positions[*rims.upper_lid[0].last().unwrap() as usize],
         upper_lid_mid: mid(&rims.upper_lid[0]),
         lower_lid_mid: mid(&rims.lower_lid[0]),
+        eye_centre: Vec3::new(EYE_X, 0.0, 0.0),
         mouth_corner: positions[*rims.upper_lip.last().unwrap() as usize],
         mouth_centre: s(0.0, MOUTH_Y),
         upper_lip: s(0.010, MOUTH_Y + 0.007),

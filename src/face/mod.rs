@@ -7,12 +7,16 @@
 //! [`FaceState`], as MuJoCo separates model and data.
 
 pub mod blink;
+pub mod calibrate;
 pub mod emotion;
+pub mod exchange;
+pub mod import;
 pub mod mesh;
 pub mod model;
 pub mod muscle;
 pub mod params;
 pub mod rig;
+pub mod script;
 pub mod tables;
 pub mod timing;
 
@@ -27,4 +31,7 @@ pub enum FaceError {
     /// A parameter value is out of range or inconsistent.
     #[error("invalid parameters: {0}")]
     Invalid(String),
+    /// A head mesh or landmark file could not be imported (file named).
+    #[error("import: {0}")]
+    Import(String),
 }

@@ -25,6 +25,11 @@ impl Face {
     /// Generate the head and build the rig.
     pub fn new(mesh: MeshParams, params: FaceParams) -> Face {
         let mesh = HeadMesh::generate(mesh);
+        Face::from_mesh(mesh, params)
+    }
+
+    /// Build the rig on a given mesh (generated or imported, see `exchange.rs`).
+    pub fn from_mesh(mesh: HeadMesh, params: FaceParams) -> Face {
         let rig = Rig::build(&mesh, &params);
         Face { mesh, params, rig }
     }
@@ -102,8 +107,8 @@ impl FaceState {
     }
 
     /// Advance by `dt` seconds and recompose [`FaceState::activation`]:
-    /// transition value + direct AUs; the upper palpebral part then gets
-    /// the lid-follow contraction for the eye pitch and the blink:
+    /// transition value + direct AUs; both palpebral parts then get the
+    /// lid-follow contraction for the eye pitch, and the upper one the blink:
     /// `k <- k + b (k45 - k)` with b the AU45 level (so a blink closes the
     /// lid fully from any expression). Spontaneous blinks occur only in
     /// neutral when `blink.neutral_only` is set (the thesis's rule).
@@ -118,16 +123,17 @@ impl FaceState {
             .add(&self.au.activation(&face.params));
         let b = self.blink.closure(bp) as f32;
         for (e, side) in [Side::Left, Side::Right].into_iter().enumerate() {
-            let i = MuscleId {
-                kind: MuscleKind::OculiUpperPalpebral,
-                side,
-            }
-            .index()
-            .expect("channel");
+            let pitch = self.eye_pitch[e];
+            let ch = |kind| MuscleId { kind, side }.index().expect("channel");
+            let lower = ch(MuscleKind::OculiLowerPalpebral);
+            a.k[lower] += face
+                .rig
+                .lid_follow_k(e, 1, pitch, bp.lower_lid_follow_gain as f32);
+            let i = ch(MuscleKind::OculiUpperPalpebral);
             let k = a.k[i]
                 + face
                     .rig
-                    .lid_follow_k(e, self.eye_pitch[e], bp.lid_follow_gain as f32);
+                    .lid_follow_k(e, 0, pitch, bp.lid_follow_gain as f32);
             a.k[i] = k + b * (bp.contraction as f32 - k);
         }
         self.activation = a;
@@ -207,39 +213,35 @@ mod tests {
     }
 
     #[test]
-    fn blink_covers_the_cornea_and_surprise_raises_the_lid() {
-        for rows in [40, 100] {
+    fn blink_closes_the_whole_fissure_and_surprise_raises_the_lid() {
+        for rows in [40, 100, 224] {
             let f = face(rows);
             let mut a = Activation::default();
             a.set_kind(MuscleKind::OculiUpperPalpebral, 2.9);
             let d = deformed(&f, a);
+            let mut worst = 0.0f32;
             for e in 0..2 {
-                let ex = if e == 0 { dims::EYE_X } else { -dims::EYE_X };
-                let centre = Vec3::new(ex, 0.0, 0.0);
-                let rim = &f.mesh.rims.upper_lid[e];
-                let front: Vec<u32> = rim
-                    .iter()
-                    .copied()
-                    .filter(|&i| (f.mesh.positions[i as usize].x - ex).abs() < 0.0045)
-                    .collect();
-                assert!(!front.is_empty());
-                for &i in &front {
-                    let p = d[i as usize];
+                let centre = f.rig.eye_centres[e];
+                let (up, low) = (&f.mesh.rims.upper_lid[e], &f.mesh.rims.lower_lid[e]);
+                // Same columns: the i-th upper and lower rim vertices share x.
+                for (&u, &l) in up.iter().zip(low) {
+                    let (pu, pl) = (d[u as usize], d[l as usize]);
+                    worst = worst.max(pu.distance(pl));
                     assert!(
-                        p.y < 0.0,
-                        "rows {rows}: rim vertex at y {} mm, above the pupil centre",
-                        p.y * 1000.0
-                    );
-                    assert!(
-                        p.z > 0.0 && p.distance(centre) >= dims::EYEBALL_R,
-                        "in front of and outside the eyeball"
+                        pu.distance(centre) >= dims::EYEBALL_R && pu.z > centre.z,
+                        "rows {rows}: rim vertex {pu} not over the eyeball"
                     );
                 }
                 // Lower lid untouched by the upper palpebral part.
-                for &i in &f.mesh.rims.lower_lid[e] {
+                for &i in low {
                     assert!(d[i as usize].distance(f.mesh.positions[i as usize]) < 1e-6);
                 }
             }
+            println!(
+                "rows {rows}: AU45 2.9, max upper-to-lower rim gap {:.3} mm",
+                worst * 1000.0
+            );
+            assert!(worst < 0.001, "rows {rows}: fissure left open by {worst} m");
             // Surprise: relaxed upper palpebral raises the lid.
             let s = emotion_activation(&f.params, Emotion::Surprise, 1.0);
             let d = deformed(&f, s);
@@ -332,5 +334,15 @@ mod tests {
         .index()
         .unwrap();
         assert!(s.activation.k[i] > 0.0);
+        // ... and the lower lid too (relaxed lower palpebral part, k < 0).
+        let j = MuscleId {
+            kind: MuscleKind::OculiLowerPalpebral,
+            side: Side::Left,
+        }
+        .index()
+        .unwrap();
+        let lowered = s.activation.k[j] * f.rig.lid_y_per_k[0][1];
+        let expect = 0.3 * dims::EYEBALL_R * (-0.3f32).sin();
+        assert!(s.activation.k[j] < 0.0 && (lowered - expect).abs() < 1e-6);
     }
 }

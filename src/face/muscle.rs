@@ -3,7 +3,8 @@
 //!
 //! * linear muscle (Waters 1987): (F1)-(F4), with the influence table of
 //!   face.md section 3 (cone half-angle B and rf / rs per muscle);
-//! * sphincter (Waters ellipse): (F5)-(F6);
+//! * sphincter (Waters ellipse): (F5)-(F6), and the upper lid's version of
+//!   it on lid-specific geometry ([`LidSphincter`]);
 //! * jaw rotation (Parke & Waters): (F7).
 //!
 //! (F1) and (F6) are linear in the contraction `k`, so callers may evaluate
@@ -142,6 +143,82 @@ impl Sphincter {
         let f = 1.0 - 0.5 * rho; // (F6)
         let op_plane = px * self.axis_x + py * self.axis_y;
         -2.0 * k * f * op_plane // (F6)
+    }
+}
+
+/// Shape of a lid margin between the eye corners: height (as a fraction of
+/// the mid-lid height) at `u = 1 - xi^2`, `xi` in [-1, 1] from corner to
+/// corner. Upper lid `u^0.6`, lower lid `u^0.8` (rounder upper lid). The
+/// generated head's openings and the lid sphincter share this one law.
+pub fn lid_margin(u: f32, upper: bool) -> f32 {
+    u.max(0.0).powf(if upper { 0.6 } else { 0.8 })
+}
+
+/// The upper palpebral orbicularis oculi on lid-specific geometry
+/// (face.md 4, eyelids).
+///
+/// Its fibres run along the lid margin, so it closes the fissure along the
+/// fissure's vertical, not towards one point (a Waters ellipse centred in
+/// the eye pulls the margin into a V and leaves the corners open). Each
+/// vertical line of the fissure at chart position `xi` carries the (F5)-(F6)
+/// law with the ellipse reduced to its vertical axis: centre O on the lower
+/// margin below P, semi-axis `ly = gap(xi) / rho_rim`, where `gap` is the
+/// local opening; `rho_rim = 2 - 1 / k_blink` puts the whole upper margin on
+/// the ring radius at which the blink contraction `k_blink` (2.9) moves it
+/// exactly onto the lower margin, corner to corner. Points below the lower
+/// margin or outside the corners do not move.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LidSphincter {
+    /// Midpoint between the eye corners.
+    pub centre: Vec3,
+    /// Unit vector from the inner to the outer corner (chart xi axis).
+    pub axis_x: Vec3,
+    /// Unit in-face vector perpendicular to `axis_x`, pointing up.
+    pub axis_y: Vec3,
+    /// Half the corner-to-corner distance.
+    pub half_width: f32,
+    /// Upper margin height above the corner line at mid-fissure (u = 1).
+    pub upper_h: f32,
+    /// Lower margin depth below the corner line at mid-fissure (u = 1).
+    pub lower_h: f32,
+    /// Elliptic radius of the upper margin in (F5).
+    pub rho_rim: f32,
+}
+
+impl LidSphincter {
+    /// Chart coordinates of `p`: (xi, height above the corner line).
+    pub fn chart(&self, p: Vec3) -> (f32, f32) {
+        let d = p - self.centre;
+        (d.dot(self.axis_x) / self.half_width, d.dot(self.axis_y))
+    }
+
+    /// Heights of the upper and lower margins at chart position `xi`.
+    pub fn margins(&self, xi: f32) -> (f32, f32) {
+        let u = 1.0 - xi * xi;
+        (
+            self.upper_h * lid_margin(u, true),
+            -self.lower_h * lid_margin(u, false),
+        )
+    }
+
+    /// Displacement `P' - P` of rest point `p` at contraction `k`: (F5)
+    /// `rho = s / ly` with `s` the height above the lower margin, (F6)
+    /// `-2 k f s` along `axis_y`, `f = 1 - rho/2` on `0 <= rho <= 2`.
+    pub fn displacement(&self, p: Vec3, k: f32) -> Vec3 {
+        let (xi, eta) = self.chart(p);
+        if xi.abs() >= 1.0 {
+            return Vec3::ZERO;
+        }
+        let (up, low) = self.margins(xi);
+        let (s, gap) = (eta - low, up - low);
+        if s <= 0.0 || gap <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let rho = self.rho_rim * s / gap; // (F5), ly = gap / rho_rim
+        if rho >= 2.0 {
+            return Vec3::ZERO;
+        }
+        -2.0 * k * (1.0 - 0.5 * rho) * s * self.axis_y // (F6)
     }
 }
 
@@ -361,6 +438,38 @@ mod tests {
             s.displacement(s.centre + Vec3::new(0.0, -0.01, 0.0), 0.5),
             Vec3::ZERO
         );
+    }
+
+    #[test]
+    fn lid_sphincter_lays_the_upper_margin_on_the_lower_at_blink() {
+        let k45 = 2.9f32;
+        let s = LidSphincter {
+            centre: Vec3::new(0.031, 0.0, 0.01),
+            axis_x: Vec3::X,
+            axis_y: Vec3::Y,
+            half_width: 0.0155,
+            upper_h: 0.0046,
+            lower_h: 0.0042,
+            rho_rim: 2.0 - 1.0 / k45,
+        };
+        for i in 1..20 {
+            let xi = -1.0 + i as f32 / 10.0;
+            let (up, low) = s.margins(xi);
+            let p = s.centre + Vec3::new(xi * s.half_width, up, 0.0);
+            let moved = p + s.displacement(p, k45);
+            assert!(close(moved.y - s.centre.y, low, 1e-6), "xi {xi}");
+            assert!(close(moved.x, p.x, 1e-9), "vertical only");
+            // Lower margin, below it, and rho >= 2 do not move.
+            let q = s.centre + Vec3::new(xi * s.half_width, low, 0.0);
+            assert_eq!(s.displacement(q - Vec3::Y * 1e-4, k45), Vec3::ZERO);
+            let far = low + (up - low) * 2.0 / s.rho_rim + 1e-5;
+            assert_eq!(
+                s.displacement(s.centre + Vec3::new(p.x - s.centre.x, far, 0.0), k45),
+                Vec3::ZERO
+            );
+        }
+        let outside = s.centre + Vec3::new(1.01 * s.half_width, 0.001, 0.0);
+        assert_eq!(s.displacement(outside, k45), Vec3::ZERO);
     }
 
     fn jaw() -> Jaw {

@@ -51,6 +51,17 @@ pub struct BlinkParams {
     /// (lid follows the eye's pitch).
     #[serde(deserialize_with = "crate::check::non_negative")]
     pub lid_follow_gain: f64,
+    /// Lower-lid vertical travel per unit of eyeball vertical travel
+    /// (0.3 if absent: the lower lid follows the pitch less than the upper).
+    #[serde(
+        default = "default_lower_lid_follow_gain",
+        deserialize_with = "crate::check::non_negative"
+    )]
+    pub lower_lid_follow_gain: f64,
+}
+
+fn default_lower_lid_follow_gain() -> f64 {
+    0.3
 }
 
 /// Slow and fast bounds of a duration (tables 5.9, 5.10), seconds.
@@ -101,6 +112,17 @@ impl FaceParams {
         let p: FaceParams = crate::scene::parse_ron(text, file)?;
         p.validate()?;
         Ok(p)
+    }
+
+    /// The database as a RON file that [`FaceParams::parse`] reads back
+    /// (e.g. a recalibrated `muscles.ron`, see `calibrate.rs`).
+    pub fn to_ron(&self) -> String {
+        let cfg = ron::ser::PrettyConfig::new().indentor("    ".to_string());
+        let body = ron::ser::to_string_pretty(self, cfg).expect("plain data serialises");
+        format!(
+            "// Face muscle database for shisen (face.md), written by \
+             FaceParams::to_ron.\n{body}\n"
+        )
     }
 
     /// The embedded default (`scenes/face/muscles.ron`).

@@ -8,20 +8,31 @@
 //! polynomials (error < a^7/5040: below 1e-7 rad-equivalent for a < 0.35 rad
 //! = 20 deg, i.e. exact for practical purposes, without a sin/cos per vertex).
 //!
-//! Eyelids: the palpebral parts act on their own lid only (upper: rest y
-//! above the eye centre, lower: below), their ellipses are placed so the
-//! eye corners lie at rho >= 2 (corners fixed) and AU45 at 2.9 brings the
-//! upper rim to just below the lower rim's height. After summing, lid-zone
-//! vertices are pushed out of a sphere of `LID_CLEARANCE` around each
-//! eyeball centre, so the lids slide over the eyeball rather than through it
-//! (a documented non-linear post-step).
+//! Eyelids: the upper palpebral part uses lid-specific geometry
+//! ([`LidSphincter`]): (F5)-(F6) along each vertical line of the fissure,
+//! centred on the lower margin, sized so the blink contraction (AU45, 2.9)
+//! lays the whole upper margin onto the lower one, corner to corner. The
+//! lower palpebral part is a Waters half ellipse (F5)-(F6) acting below the
+//! eye centre, with the eye corners at rho >= 2 (corners fixed). After
+//! summing, lid-zone vertices are pushed out of a sphere of `LID_CLEARANCE`
+//! around each eyeball centre, so the lids slide over the eyeball rather
+//! than through it (a documented non-linear post-step). Both lids follow
+//! the eye's pitch through their sphincter channel ([`Rig::lid_follow_k`]).
 
 use super::emotion::{Activation, MuscleId, N_CHANNELS, Side, channels};
 use super::mesh::{HeadMesh, Landmarks, dims, mirror};
-use super::muscle::{Jaw, LinearMuscle, Sphincter, SphincterPart};
+use super::muscle::{Jaw, LidSphincter, LinearMuscle, Sphincter, SphincterPart, lid_margin};
 use super::params::FaceParams;
 use super::tables::MuscleKind;
 use glam::Vec3;
+
+fn eye_centre(l: &Landmarks, side: Side) -> Vec3 {
+    if side == Side::Right {
+        mirror(l.eye_centre)
+    } else {
+        l.eye_centre
+    }
+}
 
 /// Radius around each eyeball centre that lid vertices are kept outside of.
 pub const LID_CLEARANCE: f32 = dims::EYEBALL_R + 0.0006;
@@ -34,6 +45,19 @@ pub enum MuscleGeometry {
     /// Waters sphincter, with an optional rest-height mask (palpebral parts:
     /// act only above / below the eye centre).
     Sphincter(Sphincter),
+    /// Upper palpebral part on lid-specific geometry.
+    Lid(LidSphincter),
+}
+
+impl MuscleGeometry {
+    /// Displacement of rest point `p` at contraction `k` (F1 / F6).
+    pub fn displacement(&self, p: Vec3, k: f32) -> Vec3 {
+        match self {
+            MuscleGeometry::Linear(m) => m.displacement(p, k),
+            MuscleGeometry::Sphincter(s) => s.displacement(p, k),
+            MuscleGeometry::Lid(s) => s.displacement(p, k),
+        }
+    }
 }
 
 /// Displacement per unit contraction of the vertices a channel moves.
@@ -67,18 +91,17 @@ pub struct Rig {
     pub jaw: Jaw,
     /// Jaw per-vertex data.
     pub jaw_field: JawField,
-    /// Upper-rim mid vertex y displacement per unit upper-palpebral k, per eye.
-    pub lid_y_per_k: [f32; 2],
+    /// Eyeball centres (0 left, 1 right).
+    pub eye_centres: [Vec3; 2],
+    /// Vertical displacement of the mid upper and lower lid margins per
+    /// unit contraction of their palpebral channel, per eye: `[upper, lower]`.
+    pub lid_y_per_k: [[f32; 2]; 2],
 }
 
 fn place(id: MuscleId, l: &Landmarks, p: &FaceParams) -> MuscleGeometry {
     use MuscleKind::*;
     let m = |v: Vec3| if id.side == Side::Right { mirror(v) } else { v };
-    let ex = if id.side == Side::Right {
-        -dims::EYE_X
-    } else {
-        dims::EYE_X
-    };
+    let ec = m(l.eye_centre);
     let gap = l.upper_lid_mid.y - l.lower_lid_mid.y;
     let fissure = l.eye_outer_corner.x - l.eye_inner_corner.x;
     let sph = |centre: Vec3, lx: f32, ly: f32, part| {
@@ -103,25 +126,16 @@ fn place(id: MuscleId, l: &Landmarks, p: &FaceParams) -> MuscleGeometry {
         Risorius => (l.face_side, l.mouth_corner),
         DepressorAnguliOris => (l.jaw_lower_edge, l.mouth_corner),
         DepressorLabiiInferioris => (l.jaw_outer, l.lower_lip),
-        // Upper palpebral: centre at the lower rim's height, ring 1/1.614 of
-        // the gap, so AU45 (2kf = 1.12 at the mid rim) closes the eye.
-        OculiUpperPalpebral => {
-            return sph(
-                Vec3::new(ex, l.lower_lid_mid.y, 0.0),
-                0.25 * fissure,
-                gap / 1.614,
-                SphincterPart::Upper,
-            );
-        }
+        OculiUpperPalpebral => return MuscleGeometry::Lid(lid(id.side, l, p)),
         OculiLowerPalpebral => {
             return sph(
-                Vec3::new(ex, l.upper_lid_mid.y, 0.0),
+                Vec3::new(ec.x, l.upper_lid_mid.y, ec.z),
                 0.25 * fissure,
                 gap / 1.65,
                 SphincterPart::Lower,
             );
         }
-        OculiOrbital => return sph(Vec3::new(ex, 0.0, 0.0), 0.020, 0.016, SphincterPart::Lower),
+        OculiOrbital => return sph(ec, 0.020, 0.016, SphincterPart::Lower),
         OrbicularisOris => return sph(l.mouth_centre, 0.022, 0.013, SphincterPart::Full),
         Jaw => unreachable!("the jaw is not a channel"),
     };
@@ -134,6 +148,38 @@ fn place(id: MuscleId, l: &Landmarks, p: &FaceParams) -> MuscleGeometry {
     })
 }
 
+/// The upper palpebral part's lid geometry from the eye landmarks: corner
+/// line, margin heights fitted through the mid-lid landmarks with the
+/// [`lid_margin`] shapes, and `rho_rim = 2 - 1 / k_blink` (see [`LidSphincter`]).
+fn lid(side: Side, l: &Landmarks, p: &FaceParams) -> LidSphincter {
+    let m = |v: Vec3| if side == Side::Right { mirror(v) } else { v };
+    let (inner, outer) = (m(l.eye_inner_corner), m(l.eye_outer_corner));
+    let axis_x = Vec3::new(outer.x - inner.x, outer.y - inner.y, 0.0).normalize();
+    let axis_y = Vec3::new(-axis_x.y, axis_x.x, 0.0) * axis_x.x.signum();
+    let s = LidSphincter {
+        centre: 0.5 * (inner + outer),
+        axis_x,
+        axis_y,
+        half_width: 0.5 * (outer - inner).dot(axis_x),
+        upper_h: 1.0,
+        lower_h: 1.0,
+        rho_rim: (2.0 - 1.0 / p.blink.contraction) as f32,
+    };
+    let height = |v: Vec3, upper: bool| {
+        let (xi, eta) = s.chart(m(v));
+        eta.abs() / lid_margin(1.0 - xi * xi, upper).max(0.05)
+    };
+    let (upper_h, lower_h) = (
+        height(l.upper_lid_mid, true),
+        height(l.lower_lid_mid, false),
+    );
+    LidSphincter {
+        upper_h,
+        lower_h,
+        ..s
+    }
+}
+
 impl Rig {
     /// Place every muscle on the mesh's landmarks and precompute the fields.
     pub fn build(mesh: &HeadMesh, params: &FaceParams) -> Rig {
@@ -143,27 +189,21 @@ impl Rig {
         for id in channels() {
             let g = place(id, l, params);
             let mut f = SparseField::default();
-            let eye_x = if id.side == Side::Right {
-                -dims::EYE_X
-            } else {
-                dims::EYE_X
-            };
+            let ec = eye_centre(l, id.side);
             for (i, &p) in mesh.positions.iter().enumerate() {
-                // Palpebral parts act on their own lid only.
+                // Sphincters act on the face only; the palpebral parts on
+                // their own lid (the upper one's law has its own domain).
                 let masked = match id.kind {
-                    MuscleKind::OculiUpperPalpebral => p.y <= 0.0 || p.z < 0.0,
-                    MuscleKind::OculiLowerPalpebral => p.y >= 0.0 || p.z < 0.0,
-                    MuscleKind::OculiOrbital => p.z < 0.0 || (p.x - eye_x).abs() > 0.05,
-                    MuscleKind::OrbicularisOris => p.z < -0.02,
+                    MuscleKind::OculiUpperPalpebral => p.z < ec.z,
+                    MuscleKind::OculiLowerPalpebral => p.y >= ec.y || p.z < ec.z,
+                    MuscleKind::OculiOrbital => p.z < ec.z || (p.x - ec.x).abs() > 0.05,
+                    MuscleKind::OrbicularisOris => p.z < ec.z - 0.02,
                     _ => false,
                 };
                 if masked {
                     continue;
                 }
-                let d = match g {
-                    MuscleGeometry::Linear(m) => m.displacement(p, 1.0),
-                    MuscleGeometry::Sphincter(s) => s.displacement(p, 1.0),
-                };
+                let d = g.displacement(p, 1.0);
                 if d != Vec3::ZERO {
                     f.index.push(i as u32);
                     f.delta.push(d);
@@ -189,38 +229,35 @@ impl Rig {
                 jaw_field.fraction.push(fr);
             }
         }
-        let mut lid_y_per_k = [0.0; 2];
+        let mut lid_y_per_k = [[0.0; 2]; 2];
         for (e, side) in [Side::Left, Side::Right].into_iter().enumerate() {
-            let rim = &mesh.rims.upper_lid[e];
-            let mid = rim[rim.len() / 2];
-            let ch = MuscleId {
-                kind: MuscleKind::OculiUpperPalpebral,
-                side,
+            let m = |v: Vec3| if side == Side::Right { mirror(v) } else { v };
+            let lids = [
+                (MuscleKind::OculiUpperPalpebral, l.upper_lid_mid),
+                (MuscleKind::OculiLowerPalpebral, l.lower_lid_mid),
+            ];
+            for (j, (kind, mid)) in lids.into_iter().enumerate() {
+                let ch = MuscleId { kind, side }.index().expect("channel");
+                lid_y_per_k[e][j] = muscles[ch].1.displacement(m(mid), 1.0).y;
             }
-            .index()
-            .expect("channel");
-            let f = &fields[ch];
-            lid_y_per_k[e] = f
-                .index
-                .iter()
-                .position(|&i| i == mid)
-                .map_or(0.0, |n| f.delta[n].y);
         }
         Rig {
             muscles,
             fields,
             jaw,
             jaw_field,
+            eye_centres: [eye_centre(l, Side::Left), eye_centre(l, Side::Right)],
             lid_y_per_k,
         }
     }
 
-    /// Upper-palpebral contraction that moves the upper rim by
-    /// `gain * eyeball radius * sin(pitch)` (the lid follows the eye's
-    /// vertical rotation; pitch positive up), for eye `e` (0 left, 1 right).
-    pub fn lid_follow_k(&self, e: usize, pitch: f32, gain: f32) -> f32 {
-        let c = self.lid_y_per_k[e];
-        if c == 0.0 {
+    /// Palpebral contraction that moves the mid margin of lid `lid` (0
+    /// upper, 1 lower) of eye `e` (0 left, 1 right) by `gain * eyeball
+    /// radius * sin(pitch)`: the lids follow the eye's vertical rotation
+    /// (pitch positive up). 0 if the channel cannot move that margin.
+    pub fn lid_follow_k(&self, e: usize, lid: usize, pitch: f32, gain: f32) -> f32 {
+        let c = self.lid_y_per_k[e][lid];
+        if c.abs() < 1e-6 {
             0.0
         } else {
             gain * dims::EYEBALL_R * pitch.sin() / c
@@ -253,8 +290,7 @@ impl Rig {
                 out[i as usize] += d;
             }
         }
-        for (e, zone) in mesh.lid_zone.iter().enumerate() {
-            let centre = Vec3::new(if e == 0 { dims::EYE_X } else { -dims::EYE_X }, 0.0, 0.0);
+        for (zone, &centre) in mesh.lid_zone.iter().zip(&self.eye_centres) {
             for &i in zone {
                 let p = &mut out[i as usize];
                 let r = *p - centre;

@@ -13,8 +13,11 @@
 //!   saccade left the eyes;
 //! - **head**: the start rule (beyond 30 deg; 20 ms after eye onset, or at
 //!   once for top-down targets) plans a minimum-jerk move (M9) to the
-//!   (M8) amplitude, or a Takagi trajectory when a scene asks for one; the
-//!   eyes counter-rotate through M7's VOR term, so the gaze stays on target.
+//!   (M8) amplitude; the eyes counter-rotate through M7's VOR term, so the
+//!   gaze stays on target;
+//! - **expressive shifts**: with [`GazeShiftLaw::Takagi`] a new target is
+//!   reached along Takagi & Takeda's sigmoid head and gaze tracks (T1), the
+//!   eyes getting gaze - head, then M7 takes over.
 //!
 //! Conventions: `f64`, radians, seconds; a 2-D angle is
 //! `DVec2 { x: yaw, y: pitch }` with yaw positive to the left and pitch
@@ -39,6 +42,21 @@ use fixation::{FixationParams, FixationState};
 use head::{HeadMove, HeadParams};
 use pursuit::{BinocularParams, BinocularState, EyeInput, head_rate_from_angular_velocity};
 use saccade::{Saccade, SaccadeParams};
+use takagi::{GazeShift, Preset};
+
+/// How the VH shifts its gaze to a new target.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+pub enum GazeShiftLaw {
+    /// The reflexive laws: saccade (M2-M6), head start rule and (M8)/(M9).
+    #[default]
+    Reflex,
+    /// A deliberate, expressive shift along Takagi & Takeda's sigmoid
+    /// trajectories (T1) with a named preset; eye = gaze - head.
+    Takagi(Preset),
+    /// The same timing as the preset with constant angular velocity (the
+    /// paper's linear baseline).
+    Linear(Preset),
+}
 
 /// All oculomotor parameters (scene `vh.oculomotor`).
 #[derive(Clone, Debug, Default, PartialEq, Deserialize)]
@@ -52,6 +70,8 @@ pub struct OculomotorParams {
     pub head: HeadParams,
     /// Microsaccades and drift while fixating (idle gaze).
     pub fixation: FixationParams,
+    /// Law for shifts to new targets (commands may override it).
+    pub gaze_shift: GazeShiftLaw,
 }
 
 /// What the controller needs to know this tick.
@@ -81,6 +101,10 @@ pub struct GazeInput {
     pub neck_angles: JointAngles,
     /// Whether each eye sees the target (false: shut or occluded).
     pub visible: [bool; 2],
+    /// The law for a shift to a new target.
+    pub style: GazeShiftLaw,
+    /// An imposed neck command (replaces the head law while present).
+    pub neck_override: Option<AxisCommand>,
 }
 
 /// A 2-DOF (yaw, pitch) command with its rates and accelerations.
@@ -132,7 +156,18 @@ pub struct GazeOutput {
 #[derive(Clone, Debug)]
 enum EyeMode {
     Pursuit,
-    Saccade { plans: Box<[Saccade; 2]>, t0: f64 },
+    Saccade {
+        plans: Box<[Saccade; 2]>,
+        t0: f64,
+    },
+    /// A Takagi/linear shift: head and gaze follow (T1) tracks from where
+    /// they started; the eyes get gaze - head.
+    Scripted {
+        shift: Box<GazeShift>,
+        t0: f64,
+        eyes: [DVec2; 2],
+        neck: DVec2,
+    },
 }
 
 /// The controller's evolving state.
@@ -151,6 +186,8 @@ pub struct Oculomotor {
     started: Option<f64>,
     /// Head movements started so far.
     pub head_moves: u32,
+    /// Time the last head movement was planned (its onset), s.
+    pub head_onset: f64,
 }
 
 impl Oculomotor {
@@ -168,12 +205,18 @@ impl Oculomotor {
             saccades: 0,
             started: None,
             head_moves: 0,
+            head_onset: f64::NEG_INFINITY,
         }
     }
 
     /// The amplitude (rad) of a saccade that started in the last step.
     pub fn saccade_started(&self) -> Option<f64> {
         self.started
+    }
+
+    /// Time the last eye movement (saccade or scripted shift) began, s.
+    pub fn eye_onset(&self) -> f64 {
+        self.eye_onset
     }
 
     /// True while a saccade is being executed.
@@ -209,6 +252,30 @@ impl Oculomotor {
         let mut eyes = prev.eyes;
         self.started = None;
         let world_dir = |a: DVec2| input.head_rot * dir_from_yaw_pitch(a.x, a.y);
+        if let (true, GazeShiftLaw::Takagi(preset) | GazeShiftLaw::Linear(preset)) =
+            (new_target, input.style)
+        {
+            // Target relative to the current line of sight, torso frame
+            // (yaw and pitch of the cyclopean direction), in degrees.
+            let torso_inv = input.torso_rot.inverse();
+            let cyclops = (input.eye_pos[0] + input.eye_pos[1]) / 2.0;
+            let mean = (prev.eyes[0].angles + prev.eyes[1].angles) / 2.0;
+            let (ly, lp) = yaw_pitch_of(torso_inv * world_dir(mean));
+            let (ty, tp) = yaw_pitch_of(torso_inv * (input.point - cyclops));
+            let delta = DVec2::new(ty - ly, tp - lp);
+            let mut shift = preset.build(delta * (180.0 / std::f64::consts::PI));
+            if let GazeShiftLaw::Linear(_) = input.style {
+                shift = shift.linear_baseline();
+            }
+            self.mode = EyeMode::Scripted {
+                shift: Box::new(shift),
+                t0: t,
+                eyes: [prev.eyes[0].angles, prev.eyes[1].angles],
+                neck: prev.neck.angles,
+            };
+            self.head = None;
+            self.eye_onset = t;
+        }
         if let EyeMode::Pursuit = self.mode {
             let (l, r) = self.pursuit.angles();
             let err = [goal[0] - l, goal[1] - r];
@@ -232,7 +299,34 @@ impl Oculomotor {
                 self.started = Some(plans[0].amplitude().max(plans[1].amplitude()));
             }
         }
+        let mut neck = prev.neck;
+        let mut scripted_neck = false;
         match &self.mode {
+            EyeMode::Scripted {
+                shift,
+                t0,
+                eyes: eye0,
+                neck: neck0,
+            } => {
+                // (T1): head and gaze tracks; eye = gaze - head, on top of
+                // where each eye started (their vergence is kept).
+                let s = t + dt - t0;
+                let smp = shift.sample(s);
+                let deg = std::f64::consts::PI / 180.0;
+                for k in 0..2 {
+                    eyes[k].angles = (eye0[k] + smp.eye * deg).clamp(-range, range);
+                    eyes[k].rates = smp.eye_rate * deg;
+                }
+                neck.angles = p.head.limits.clamp(*neck0 + smp.head * deg);
+                neck.rates = smp.head_rate * deg;
+                neck.accel = (neck.rates - prev.neck.rates) / dt;
+                scripted_neck = true;
+                if s >= shift.end() {
+                    self.pursuit.reset(eyes[0].angles, eyes[1].angles);
+                    self.fixation.reset(&p.fixation, rng);
+                    self.mode = EyeMode::Pursuit;
+                }
+            }
             EyeMode::Saccade { plans, t0 } => {
                 let s = t + dt - t0;
                 for k in 0..2 {
@@ -253,9 +347,12 @@ impl Oculomotor {
                 let (l, r) = self.pursuit.angles();
                 // Accommodation: each seeing eye knows how far it focuses,
                 // which lets an occluded partner keep converging (pursuit.rs).
+                // Focus distance from the head-frame origin, the midpoint
+                // between the eyes (pursuit.rs's convention).
+                let cyclops = (input.eye_pos[0] + input.eye_pos[1]) / 2.0;
+                let focus = (input.point - cyclops).length();
                 let inputs = [(goal[0] - l, 0), (goal[1] - r, 1)].map(|(e, k)| {
                     if input.visible[k] {
-                        let focus = (input.point - input.head_pos).length();
                         EyeInput::seen(e, target_rate[k]).with_focus(focus)
                     } else {
                         EyeInput::occluded()
@@ -277,7 +374,6 @@ impl Oculomotor {
         }
 
         // Head: start rule, then (M8) amplitude and (M9) trajectory.
-        let mut neck = prev.neck;
         let torso_inv = input.torso_rot.inverse();
         let face_fwd = input.head_rot * DVec3::Z;
         let to_point = (input.point - input.head_pos).normalize_or(face_fwd);
@@ -287,6 +383,8 @@ impl Oculomotor {
             .as_ref()
             .is_some_and(|(m, t0)| t < t0 + m.duration());
         if !moving
+            && !scripted_neck
+            && !matches!(self.mode, EyeMode::Scripted { .. })
             && p.head
                 .should_start(from_face, t - self.eye_onset, input.top_down)
         {
@@ -297,13 +395,22 @@ impl Oculomotor {
                 let plan = HeadMove::plan(&p.head, neck.angles, target);
                 self.head = Some((plan, t));
                 self.head_moves += 1;
+                self.head_onset = t;
             }
         }
-        if let Some((m, t0)) = &self.head {
+        if let Some((m, t0)) = &self.head
+            && !scripted_neck
+        {
             let smp = m.sample(t + dt - t0);
             neck.angles = smp.angles;
             neck.rates = smp.rate;
             neck.accel = smp.accel;
+        }
+        if let Some(imposed) = input.neck_override {
+            // The head is moved from outside (a test's shake): the laws
+            // above keep running and the eyes must compensate (VOR).
+            neck = imposed;
+            self.head = None;
         }
         self.out = GazeOutput { eyes, neck };
         self.out
