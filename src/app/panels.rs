@@ -408,20 +408,32 @@ fn gains(ui: &mut egui::Ui, s: &mut Session, st: &mut PanelState) {
             p.line(Line::new("neck pitch", series(&|x| x.neck_actual.pitch)));
         });
     if let Some(r) = &st.step {
-        let m = &r.metrics;
+        let m = &r.report;
         ui.label(format!(
-            "{} step to {:.1} deg: rise {:.0} ms, overshoot {:.1} %, settling {:.0} ms",
-            r.what,
-            r.target,
+            "{:?} step ({:?}): rise {:.0} ms, overshoot {:.1} % (max {:.0} %), settling {:.0} ms (max {:.0} ms){}",
+            r.group,
+            r.objective.step,
             m.rise_time * 1e3,
             m.overshoot * 100.0,
-            m.settling_time * 1e3
+            r.objective.max_overshoot * 100.0,
+            m.settling_time * 1e3,
+            r.objective.max_settling * 1e3,
+            if m.unstable.is_some() { ", UNSTABLE" } else { "" }
         ));
-        let pts: PlotPoints = r.t.iter().zip(&r.y).map(|(t, y)| [*t, *y]).collect();
-        let tgt: PlotPoints = vec![[0.0, r.target], [*r.t.last().unwrap_or(&1.0), r.target]].into();
+        let deg = |v: &[f64]| -> PlotPoints<'static> {
+            r.response
+                .t
+                .iter()
+                .zip(v)
+                .map(|(t, y)| [*t, y.to_degrees()])
+                .collect()
+        };
         Plot::new("step plot").height(120.0).show(ui, |p| {
-            p.line(Line::new("response", pts));
-            p.line(Line::new("target", tgt).style(egui_plot::LineStyle::dashed_loose()));
+            p.line(Line::new("response", deg(&r.response.actual)));
+            p.line(
+                Line::new("target", deg(&r.response.reference))
+                    .style(egui_plot::LineStyle::dashed_loose()),
+            );
         });
     }
 }
