@@ -1,18 +1,28 @@
 //! PD joint control: the gains file and the one PD law every VH joint uses.
 //!
-//! ## Why explicit torques, not rapier's joint motors
-//! Measured on this stack (rust-stack notes, and `tests/joints.rs`):
-//! rapier's default acceleration-based motors scale stiffness by the body's
-//! inertia about its own centre of mass rather than the pivot, so a
-//! motor-held head sagged ~26 deg under gravity, and spherical-joint motors
-//! drive `2 asin(q.imag)` per axis rather than our yaw/pitch/roll. Explicit
-//! torques let us write the law once, in physical units, with gravity
+//! ## Why our own torques, not rapier's joint motors
+//! Measured on this stack (rust-stack notes): rapier's default
+//! acceleration-based motors scale stiffness by the body's inertia about
+//! its own centre of mass rather than the pivot, so a motor-held head
+//! sagged ~26 deg under gravity, and spherical-joint motors drive
+//! `2 asin(q.imag)` per axis rather than our yaw/pitch/roll. Torques we
+//! compute let us write the law once, in physical units, with gravity
 //! compensation and an inertia feed-forward of the planned acceleration,
 //! and apply the reaction to the parent (so a saccade really pushes the
-//! head). Their cost is an explicit-integration stability bound: with a
-//! 7.5 g eyeball (I = 3.6e-7 kg m^2) and omega_n = 300 rad/s the step must
-//! satisfy omega_n dt << 1: unstable at 60 Hz, comfortable at the 1 kHz
-//! control rate we run (omega_n dt = 0.3, 2 zeta omega_n dt = 0.6 < 2).
+//! head).
+//!
+//! ## Why the stable (semi-implicit) form
+//! Plain explicit PD torques have a stability bound, `kp dt^2/I + 2 kd
+//! dt/I < 4` per axis. At our 1 kHz step the 7.5 g eyeball is fine
+//! (omega_n dt = 0.3) but a ball joint also has a *twist* axis of tiny
+//! inertia (an arm about its own length, ~2e-3 kg m^2) on which the same
+//! damping gives `2 kd dt / I` of about 12: a 30 s random sparring soak blew
+//! the arm up. We therefore use stable PD (Tan, Liu & Turk 2011): the
+//! spring acts on the error predicted one step ahead and the damping is
+//! solved implicitly against the joint subtree's inertia tensor,
+//! `tau = I (I + kd dt)^-1 [kp (e + dt w_err) + kd w_err] + ff I a_ref`,
+//! which is stable for any non-negative gains and step and equals plain PD
+//! as dt -> 0.
 
 use std::path::Path;
 
@@ -115,14 +125,6 @@ impl Gains {
     }
 }
 
-/// Whether explicit PD torques with these gains are stable on an inertia
-/// `inertia` (kg m^2) at step `dt`: for the semi-implicit Euler that rapier
-/// integrates, x'' = -(kp x + kd x') / I is stable when
-/// `kp dt^2 / I + 2 kd dt / I < 4`.
-pub fn explicit_stable(g: &JointGains, inertia: f64, dt: f64) -> bool {
-    g.kp * dt * dt / inertia + 2.0 * g.kd * dt / inertia < 4.0
-}
-
 /// What a joint is asked to do this tick, relative to its parent.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JointTarget {
@@ -158,13 +160,16 @@ pub struct JointState {
 }
 
 /// The PD law, in one place: world-frame torque on the child (the parent
-/// receives its negative).
+/// receives its negative), in the stable-PD form described in the module
+/// docs, for a step of `dt` seconds:
 ///
-/// `tau = kp * e + kd * (w_ref - w) + ff * I * a_ref`, where `e` is the
-/// rotation vector taking the current relative rotation to the target.
-/// Gravity compensation is added by the caller ([`crate::world`]), which
-/// knows the subtree masses.
-pub fn pd_torque(g: &JointGains, target: &JointTarget, s: &JointState) -> Vec3 {
+/// `tau = I (I + kd dt)^-1 [kp (e + dt w_err) + kd w_err] + ff I a_ref`,
+///
+/// where `e` is the rotation vector taking the current relative rotation to
+/// the target, `w_err = w_ref - w` and `I` the subtree's inertia about the
+/// pivot. Gravity compensation is added by the caller ([`crate::world`]),
+/// which knows the subtree masses.
+pub fn pd_torque(g: &JointGains, target: &JointTarget, s: &JointState, dt: f32) -> Vec3 {
     let q_rel = s.parent_rot.inverse() * s.child_rot;
     let mut q_err = target.rotation * q_rel.inverse();
     if q_err.w < 0.0 {
@@ -176,7 +181,15 @@ pub fn pd_torque(g: &JointGains, target: &JointTarget, s: &JointState) -> Vec3 {
     let kp = g.kp as f32;
     let kd = g.kd as f32;
     let ff = g.feedforward as f32;
-    kp * e + kd * (w_ref - s.rel_angvel) + ff * (s.inertia * a_ref)
+    let w_err = w_ref - s.rel_angvel;
+    let pd = kp * (e + dt * w_err) + kd * w_err;
+    let implicit = s.inertia + Mat3::from_diagonal(Vec3::splat(kd * dt));
+    let solved = if implicit.determinant().abs() > f32::MIN_POSITIVE {
+        s.inertia * (implicit.inverse() * pd)
+    } else {
+        pd // no inertia to speak of: plain PD
+    };
+    solved + ff * (s.inertia * a_ref)
 }
 
 #[cfg(test)]
@@ -209,7 +222,8 @@ mod tests {
             rel_angvel: Vec3::ZERO,
             inertia: Mat3::IDENTITY,
         };
-        let tau = pd_torque(&g, &target, &s);
+        // dt = 0: the stable form reduces to plain PD
+        let tau = pd_torque(&g, &target, &s, 0.0);
         // the error axis is the parent's Y axis, expressed in world
         let axis = Quat::from_rotation_x(0.3) * Vec3::Y;
         assert!((tau - axis * 2.0).length() < 1e-5, "{tau}");
@@ -218,7 +232,7 @@ mod tests {
             child_rot: s.parent_rot * target.rotation,
             ..s
         };
-        let tau = pd_torque(&g, &target, &moving);
+        let tau = pd_torque(&g, &target, &moving, 0.0);
         assert!(
             (tau + Vec3::X).length() < 1e-5,
             "pure damping at target: {tau}"
@@ -226,12 +240,34 @@ mod tests {
     }
 
     #[test]
-    fn stability_bound_separates_60hz_from_1khz_for_the_eye() {
-        // The default eye gains (omega_n 300 rad/s, zeta 1) on a 7.5 g eyeball.
-        let g = Gains::default().eye;
-        let i = 0.4 * 0.0075 * 0.011 * 0.011;
-        assert!(explicit_stable(&g, i, 0.001));
-        assert!(!explicit_stable(&g, i, 1.0 / 60.0));
+    fn stable_pd_stays_stable_where_explicit_pd_explodes() {
+        // A stiff, heavily damped joint on a small inertia at 60 Hz:
+        // 2 kd dt / I = 33 (explicit PD diverges at once).
+        let g = JointGains {
+            kp: 2.0,
+            kd: 0.1,
+            feedforward: 0.0,
+        };
+        let inertia = 1e-4f32;
+        let dt = 1.0 / 60.0f32;
+        let target = JointTarget::default();
+        let (mut angle, mut w) = (0.5f32, 0.0f32);
+        let (mut ex_angle, mut ex_w) = (0.5f32, 0.0f32);
+        for _ in 0..200 {
+            let s = JointState {
+                parent_rot: Quat::IDENTITY,
+                child_rot: Quat::from_rotation_z(angle),
+                rel_angvel: Vec3::Z * w,
+                inertia: Mat3::from_diagonal(Vec3::splat(inertia)),
+            };
+            w += pd_torque(&g, &target, &s, dt).z / inertia * dt;
+            angle += w * dt;
+            // explicit PD on the same joint
+            ex_w += (-(g.kp as f32) * ex_angle - g.kd as f32 * ex_w) / inertia * dt;
+            ex_angle += ex_w * dt;
+        }
+        assert!(angle.abs() < 1e-3, "stable PD settles: {angle}");
+        assert!(ex_angle.is_nan() || ex_angle.abs() > 1.0, "explicit PD diverges: {ex_angle}");
     }
 
     #[test]

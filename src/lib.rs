@@ -32,6 +32,7 @@ pub mod render;
 pub mod scene;
 pub mod script;
 pub mod sim;
+pub mod soak;
 pub mod trace;
 pub mod tune;
 pub mod vision;

@@ -122,6 +122,16 @@ enum Command {
         #[arg(long, default_value = "sweep-out")]
         out: PathBuf,
     },
+    /// Spar against a seeded random opponent for N simulated minutes,
+    /// checking invariants every tick, and print a summary.
+    Soak {
+        /// Simulated minutes.
+        #[arg(long, default_value_t = 1.0)]
+        minutes: f64,
+        /// Seed of the opponent and the VH.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+    },
     /// Face tools: export the head with morph targets, calibrate the muscle
     /// database from subject data.
     Face {
@@ -476,6 +486,46 @@ fn sweep_cmd(
     Ok(())
 }
 
+fn soak_cmd(minutes: f64, seed: u64) -> Result<bool> {
+    if !(minutes.is_finite() && minutes > 0.0) {
+        anyhow::bail!("--minutes: must be a positive number, got {minutes}");
+    }
+    let bar = indicatif::ProgressBar::new(1000);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{bar:40} {percent}% simulated, {elapsed} elapsed, eta {eta}",
+        )
+        .expect("template"),
+    );
+    let wall = std::time::Instant::now(); // reporting only
+    let r = shisen::soak::soak(minutes, seed, |f| bar.set_position((f * 1000.0) as u64));
+    bar.finish_and_clear();
+    let secs = wall.elapsed().as_secs_f64();
+    println!(
+        "soak: {:.1} simulated minutes ({} ticks) in {:.1} s wall ({:.1}x real time), seed {seed}",
+        r.sim_time / 60.0,
+        r.ticks,
+        secs,
+        r.sim_time / secs.max(1e-9)
+    );
+    println!(
+        "  {} opponent events, {} VH punches, {} head-contact ticks, {} physics resets",
+        r.events, r.vh_punches, r.head_hit_ticks, r.resets
+    );
+    println!(
+        "  worst eye/neck excursion past its range {:.2} deg; resident memory {} -> {} KiB",
+        r.worst_limit_excess_deg, r.rss_kib.0, r.rss_kib.1
+    );
+    for f in &r.failures {
+        println!("  FAIL {f}");
+    }
+    println!(
+        "  invariants {}",
+        if r.passed() { "held" } else { "VIOLATED" }
+    );
+    Ok(r.passed())
+}
+
 fn face_cmd(c: FaceCommand) -> Result<()> {
     use shisen::face::{Face, calibrate, exchange, mesh::MeshParams, params::FaceParams};
     match c {
@@ -589,6 +639,14 @@ fn main() -> ExitCode {
             out,
         }) => report(sweep_cmd(group.into(), runs, grid, seed, &out)),
         Some(Command::Face { command }) => report(face_cmd(command)),
+        Some(Command::Soak { minutes, seed }) => match soak_cmd(minutes, seed) {
+            Ok(true) => ExitCode::SUCCESS,
+            Ok(false) => ExitCode::from(1),
+            Err(e) => {
+                eprintln!("error: {e:#}");
+                ExitCode::from(2)
+            }
+        },
         Some(Command::Plot { trace, out, size }) => {
             match shisen::plot::plot_trace(&trace, &out, size) {
                 Ok(()) => ExitCode::SUCCESS,

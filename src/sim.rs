@@ -140,7 +140,8 @@ pub struct Sim {
     tick: u64,
     next_event: usize,
     events: Vec<crate::scene::Event>,
-    tracks: Vec<(usize, Track)>,
+    /// Scripted bodies: body, track, its last two positions.
+    tracks: Vec<(usize, Track, [DVec3; 2])>,
     /// Attention state.
     pub attention: Attention,
     /// Action planner state.
@@ -176,7 +177,8 @@ impl Sim {
         let mut tracks = Vec::new();
         for k in 0..3 {
             let b = world.opponent[k];
-            tracks.push((b, Track::new(world.rb(b).translation().as_dvec3())));
+            let p = world.rb(b).translation().as_dvec3();
+            tracks.push((b, Track::new(p), [p; 2]));
         }
         for b in &scene.bodies {
             let shape = match b.shape {
@@ -194,7 +196,7 @@ impl Sim {
                 gravity: b.gravity,
             });
             if b.kinematic {
-                tracks.push((idx, Track::new(b.position)));
+                tracks.push((idx, Track::new(b.position), [b.position; 2]));
             }
         }
         let mut events = scene.timeline.clone();
@@ -213,7 +215,6 @@ impl Sim {
             targets[base].rotation = s;
             targets[base + 1].rotation = e;
         }
-        warn_unstable(&world, &loaded.gains);
         let mut rng = Streams::new(scene.seed);
         Sim {
             face: loaded.face.clone(),
@@ -259,8 +260,8 @@ impl Sim {
     pub fn track_mut(&mut self, body: usize) -> Option<&mut Track> {
         self.tracks
             .iter_mut()
-            .find(|(b, _)| *b == body)
-            .map(|(_, t)| t)
+            .find(|(b, ..)| *b == body)
+            .map(|(_, t, _)| t)
     }
 
     fn part_body(&self, part: &Part) -> usize {
@@ -400,8 +401,14 @@ impl Sim {
     /// Recover from a physics explosion: the VH back at rest in its rest
     /// pose, its controllers restarted; the opponent, props and the scene's
     /// timeline carry on. Counted in [`Sim::resets`].
-    pub fn reset_vh(&mut self) {
-        tracing::warn!(t = self.time(), "physics blew up: VH reset to rest");
+    pub fn reset_vh(&mut self, why: &str) {
+        if self.resets.is_power_of_two() || self.resets == 0 {
+            tracing::warn!(
+                t = self.time(),
+                resets = self.resets + 1,
+                "physics blew up ({why}): VH reset to rest"
+            );
+        }
         self.world.reset_vh();
         self.oculomotor = Oculomotor::new(&self.scene.vh.oculomotor, &mut self.rng.oculomotor);
         self.behaviour = Behaviour::new(&self.world.plan);
@@ -440,11 +447,17 @@ impl Sim {
         let t = self.time();
         let dt = DT;
         self.run_events(t);
-        // Kinematic bodies: where they will be at the end of this tick.
+        // Scripted bodies: where they should be at the end of this tick,
+        // with the track's velocity and acceleration (finite differences
+        // of its last three positions).
         let t_next = t + dt;
-        for (b, tr) in &mut self.tracks {
+        for (b, tr, hist) in &mut self.tracks {
             let p = tr.position(t_next);
-            self.world.set_kinematic(*b, p.as_vec3());
+            let [p1, p2] = *hist;
+            let v = (p - p1) / dt;
+            let a = (p - 2.0 * p1 + p2) / (dt * dt);
+            *hist = [p, p1];
+            self.world.drive(*b, p.as_vec3(), v.as_vec3(), a.as_vec3());
         }
 
         // Vision.
@@ -580,9 +593,10 @@ impl Sim {
         self.world.apply_control(&self.gains, &self.targets);
         self.world.step();
         self.tick += 1;
-        let reset = self.world.blown_up(BLOW_UP_ANGVEL);
-        if reset {
-            self.reset_vh();
+        let blow_up = self.world.blow_up(BLOW_UP_ANGVEL);
+        let reset = blow_up.is_some();
+        if let Some(why) = blow_up {
+            self.reset_vh(&why);
         }
 
         let neck_target = JointAngles {
@@ -652,23 +666,6 @@ impl Sim {
             emotion: self.face_state.emotion,
             blink: self.face_state.blink.closure(&self.face.params.blink),
             reset: false,
-        }
-    }
-}
-
-/// Warn about gains beyond the explicit-integration stability bound (they
-/// will blow up; the run survives through [`Sim::reset_vh`]).
-fn warn_unstable(world: &World, gains: &Gains) {
-    for (s, segm) in world.plan.segments.iter().enumerate() {
-        let Some(group) = segm.group else { continue };
-        let i = world.subtree_inertia(s, world.pivot(s));
-        let smallest = i.x_axis.x.min(i.y_axis.y).min(i.z_axis.z) as f64;
-        if !crate::control::explicit_stable(gains.group(group), smallest, world.dt) {
-            tracing::warn!(
-                "{group:?} gains exceed the explicit stability bound at dt = {} s on {} (I = {smallest:.3e} kg m^2): expect blow-ups and resets",
-                world.dt,
-                segm.name
-            );
         }
     }
 }

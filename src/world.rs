@@ -33,7 +33,7 @@ pub struct BodyInfo {
     pub collider: ColliderHandle,
     /// Owner.
     pub owner: Owner,
-    /// Moved by script/input rather than by forces.
+    /// Moved exactly by script (kinematic) rather than by forces.
     pub kinematic: bool,
 }
 
@@ -79,6 +79,15 @@ pub mod opp {
     pub const RIGHT_GLOVE: usize = 2;
     pub const NAMES: [&str; 3] = ["head", "left_glove", "right_glove"];
 }
+
+/// Masses of the opponent's head and gloves (a glove carries the effective
+/// mass of the arm behind it), kg.
+pub const OPPONENT_MASS: [f32; 3] = [5.0, 1.5, 1.5];
+/// Drive of the opponent's parts, per kg: natural frequency 40 rad/s,
+/// critically damped (k = w^2, c = 2 w). A free glove tracks a 0.2 s
+/// punch closely; a blocked one pushes with at most about k x.
+const DRIVE_STIFFNESS: f32 = 1600.0;
+const DRIVE_DAMPING: f32 = 80.0;
 
 /// Collision group of the VH (it does not collide with itself).
 const VH_GROUP: Group32 = Group32::GROUP_1;
@@ -239,13 +248,21 @@ impl World {
         ];
         for k in 0..3 {
             let idx = bodies.len();
+            // Dynamic, driven by a spring-damper toward the scripted or live
+            // target (see `drive`): finite mass and strength, so a punch
+            // that lands transfers momentum, and an arm caught between a
+            // glove and the torso is pushed, not crushed.
             let h = phys.insert_body(
-                RigidBodyBuilder::kinematic_position_based()
+                RigidBodyBuilder::dynamic()
                     .translation(positions[k])
+                    .gravity_scale(0.0)
+                    .lock_rotations()
+                    .can_sleep(false)
                     .user_data(idx as u128),
             );
             let c = phys.insert_collider(
                 ColliderBuilder::ball(radii[k])
+                    .mass(OPPONENT_MASS[k])
                     .collision_groups(opp_groups)
                     .user_data(idx as u128),
                 Some(h),
@@ -256,7 +273,7 @@ impl World {
                 handle: h,
                 collider: c,
                 owner: Owner::Opponent,
-                kinematic: true,
+                kinematic: false,
             });
         }
         World {
@@ -394,7 +411,7 @@ impl World {
                 rel_angvel: self.seg(s).angvel() - self.seg(p).angvel(),
                 inertia: self.subtree_inertia(s, pivot),
             };
-            let mut tau = pd_torque(gains.group(group), &targets[s], &state);
+            let mut tau = pd_torque(gains.group(group), &targets[s], &state, dt);
             if gains.gravity_compensation {
                 tau += self.gravity_torque(s);
             }
@@ -410,10 +427,23 @@ impl World {
         }
     }
 
-    /// Set where a kinematic body will be after the next step.
-    pub fn set_kinematic(&mut self, body: usize, position: Vec3) {
+    /// Move a scripted body toward `position` (with the target's velocity
+    /// and acceleration): kinematic props go exactly there at the end of
+    /// the next step; the opponent's dynamic parts are pulled by a
+    /// spring-damper with feed-forward, `F = m a + c (v - v_b) + k (p - p_b)`,
+    /// whose stiffness bounds the force a blocked glove can push with.
+    pub fn drive(&mut self, body: usize, position: Vec3, velocity: Vec3, accel: Vec3) {
         let h = self.bodies[body].handle;
-        self.phys.bodies[h].set_next_kinematic_translation(position);
+        let dt = self.dt as f32;
+        let rb = &mut self.phys.bodies[h];
+        if rb.is_kinematic() {
+            rb.set_next_kinematic_translation(position);
+            return;
+        }
+        let m = rb.mass();
+        let (k, c) = (DRIVE_STIFFNESS * m, DRIVE_DAMPING * m);
+        let f = m * accel + c * (velocity - rb.linvel()) + k * (position - rb.translation());
+        rb.apply_impulse(f * dt, true);
     }
 
     /// Advance the physics by one fixed step.
@@ -431,17 +461,19 @@ impl World {
         })
     }
 
-    /// A physics explosion: non-finite state (rapier quarantined a body),
-    /// or a VH segment spinning faster than `max_angvel` rad/s (a saccade
-    /// peaks near 9 rad/s; absurd gains or an integration blow-up give
-    /// thousands).
-    pub fn blown_up(&self, max_angvel: f32) -> bool {
-        !self.phys.quarantine().is_empty()
-            || !self.is_finite()
-            || self.plan.segments.iter().enumerate().any(|(i, _)| {
-                let w = self.seg(i).angvel();
-                !w.is_finite() || w.length() > max_angvel
-            })
+    /// A physics explosion, described: non-finite state (rapier
+    /// quarantined a body), or a VH segment spinning faster than
+    /// `max_angvel` rad/s (a saccade peaks near 9 rad/s; absurd gains or an
+    /// integration blow-up give thousands).
+    pub fn blow_up(&self, max_angvel: f32) -> Option<String> {
+        if !self.phys.quarantine().is_empty() || !self.is_finite() {
+            return Some("non-finite state".into());
+        }
+        self.plan.segments.iter().enumerate().find_map(|(i, s)| {
+            let w = self.seg(i).angvel().length();
+            (!w.is_finite() || w > max_angvel)
+                .then(|| format!("{} spinning at {w:.0} rad/s", s.name))
+        })
     }
 
     /// Put the VH back in its rest pose, at rest: every segment re-enabled

@@ -126,7 +126,7 @@ fn occluded_bodies_are_not_seen() {
         seen.iter().any(|s| s.body == ball),
         "without the ray test it would be"
     );
-    world.set_kinematic(ball, Vec3::new(1.0, 1.67, 1.6));
+    world.drive(ball, Vec3::new(1.0, 1.67, 1.6), Vec3::ZERO, Vec3::ZERO);
     world.step();
     see(&world, &p, [true, true], &mut seen);
     assert!(
