@@ -11,7 +11,10 @@
 //! (PD joints), with [`face`] beside them (muscle-driven face, F1-F8).
 //! [`sim`] runs the tick; [`scene`] reads scene files;
 //! [`trace`] and [`expect`] record and judge headless runs.
+//! [`render`] draws it (offscreen or in the window); [`app`] is the
+//! sparring window and [`input`] your side of the bout.
 
+pub mod app;
 pub mod attention;
 pub mod behaviour;
 pub mod body;
@@ -20,11 +23,13 @@ pub mod control;
 pub mod expect;
 pub mod face;
 pub mod headless;
+pub mod input;
 pub mod math;
 pub mod metrics;
 pub mod mjcf;
 pub mod oculomotor;
 pub mod plot;
+pub mod render;
 pub mod scene;
 pub mod script;
 pub mod sim;

@@ -11,7 +11,9 @@ use clap::{Parser, Subcommand};
 use shisen::body::Group;
 use shisen::control::Gains;
 use shisen::headless;
+use shisen::render::{Headless, Overlays, View, write_png};
 use shisen::scene::LoadedScene;
+use shisen::sim::{DT, Sim};
 
 /// shisen (視線): a virtual human that boxes with you and looks where a person would.
 #[derive(Parser)]
@@ -19,6 +21,34 @@ use shisen::scene::LoadedScene;
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
+    /// Window: scene file to spar in (default: the embedded scene).
+    #[arg(long)]
+    scene: Option<PathBuf>,
+    /// Window: bindings file (default: ~/.config/shisen/bindings.ron, else built in).
+    #[arg(long)]
+    bindings: Option<PathBuf>,
+    /// Window: close after this many seconds (CI).
+    #[arg(long)]
+    exit_after: Option<f64>,
+    /// Window: save a screenshot here before closing (with --exit-after).
+    #[arg(long)]
+    screenshot: Option<PathBuf>,
+    /// Window: open the tuning panel at start.
+    #[arg(long)]
+    panels: bool,
+    /// Window: open these panel sections at start (scene, attention,
+    /// personality, gains, face; repeatable).
+    #[arg(long, value_parser = ["scene", "attention", "personality", "gains", "face"])]
+    open: Vec<String>,
+    /// Window: start in the orbit view.
+    #[arg(long)]
+    orbit: bool,
+    /// Window: gaze rays and saliency labels on at start.
+    #[arg(long)]
+    overlays: bool,
+    /// Print the default bindings (RON) and exit.
+    #[arg(long)]
+    print_bindings: bool,
 }
 
 #[derive(Subcommand)]
@@ -27,7 +57,7 @@ enum Command {
     Run {
         /// Scene file, or `default`.
         scene: String,
-        /// Run without a window (the only mode until the sparring window lands).
+        /// Run without a window (`run` never opens one; the flag is kept for scripts).
         #[arg(long)]
         headless: bool,
         /// Write the trace (CSV) here.
@@ -127,6 +157,26 @@ enum Command {
         #[arg(long, default_value = "1400x900", value_parser = parse_size)]
         size: (u32, u32),
     },
+    /// Run a scene headless to a time and render a picture of it (PNG).
+    Render {
+        /// Scene file, or `default`.
+        scene: String,
+        /// Simulation time to render, seconds.
+        #[arg(long, default_value_t = 1.0)]
+        at: f64,
+        /// Output PNG.
+        #[arg(long)]
+        out: PathBuf,
+        /// Image size, WxH pixels.
+        #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+        size: (u32, u32),
+        /// Camera: `first` (from your head) or `orbit`.
+        #[arg(long, default_value = "first", value_parser = parse_view)]
+        view: View,
+        /// Overlays to draw (repeatable).
+        #[arg(long, value_enum)]
+        overlay: Vec<OverlayArg>,
+    },
 }
 
 #[derive(Subcommand)]
@@ -173,6 +223,17 @@ impl From<GroupArg> for Group {
     }
 }
 
+/// Overlays selectable on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum OverlayArg {
+    /// Lines of sight and the gaze point.
+    Gaze,
+    /// Fields of view.
+    Fov,
+    /// Joint frames.
+    Frames,
+}
+
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once('x')
@@ -184,6 +245,47 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
             .ok_or_else(|| format!("size must be 64-8192 pixels, got `{v}`"))
     };
     Ok((n(w)?, n(h)?))
+}
+
+fn parse_view(s: &str) -> Result<View, String> {
+    View::parse(s).ok_or_else(|| format!("expected first or orbit, got {s}"))
+}
+
+fn render(
+    scene: &str,
+    at: f64,
+    out: &std::path::Path,
+    size: (u32, u32),
+    view: View,
+    overlay: &[OverlayArg],
+) -> Result<()> {
+    if !(at.is_finite() && at >= 0.0) {
+        anyhow::bail!("--at: must be a non-negative number of seconds, got {at}");
+    }
+    let loaded = load(scene)?;
+    let mut sim = Sim::new(&loaded);
+    while sim.time() + DT / 2.0 < at {
+        sim.step();
+    }
+    let overlays = Overlays {
+        gaze_rays: overlay.contains(&OverlayArg::Gaze),
+        fov_cones: overlay.contains(&OverlayArg::Fov),
+        joint_frames: overlay.contains(&OverlayArg::Frames),
+        saliency_labels: false,
+    };
+    let mut gpu = Headless::new()?;
+    let image = gpu.snapshot(&sim, view, overlays, size)?;
+    write_png(&image, out)?;
+    println!(
+        "{} at {:.3} s -> {} ({}x{}, {})",
+        loaded.scene.name,
+        sim.time(),
+        out.display(),
+        size.0,
+        size.1,
+        gpu.info.name
+    );
+    Ok(())
 }
 
 fn load(scene: &str) -> Result<LoadedScene> {
@@ -467,13 +569,34 @@ fn main() -> ExitCode {
         .init();
     let cli = Cli::parse();
     match cli.command {
-        None => {
-            println!(
-                "The sparring window is not built yet. Run a scene headless:\n  \
-                 shisen run default --headless\n  \
-                 shisen run scenes/look_sequence.ron --headless --trace trace.csv"
-            );
+        None if cli.print_bindings => {
+            print!("{}", shisen::input::DEFAULT_BINDINGS_RON);
             ExitCode::SUCCESS
+        }
+        None => {
+            if let Some(s) = cli.exit_after
+                && !(s.is_finite() && s >= 0.0)
+            {
+                eprintln!("error: --exit-after: must be a non-negative number of seconds");
+                return ExitCode::from(2);
+            }
+            let opts = shisen::app::AppOptions {
+                scene: cli.scene,
+                bindings: cli.bindings,
+                exit_after: cli.exit_after,
+                screenshot: cli.screenshot,
+                panels: cli.panels,
+                open: cli.open,
+                orbit: cli.orbit,
+                overlays: cli.overlays,
+            };
+            match shisen::app::run(opts) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => {
+                    eprintln!("error: {e:#}");
+                    ExitCode::from(1)
+                }
+            }
         }
         Some(Command::Run {
             scene,
@@ -547,5 +670,19 @@ fn main() -> ExitCode {
                 }
             }
         }
+        Some(Command::Render {
+            scene,
+            at,
+            out,
+            size,
+            view,
+            overlay,
+        }) => match render(&scene, at, &out, size, view, &overlay) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {e:#}");
+                ExitCode::from(2)
+            }
+        },
     }
 }

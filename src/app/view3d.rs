@@ -1,0 +1,172 @@
+//! The 3D viewport: turns the pointer into a glove position (first person)
+//! or an orbit (orbit view), renders the session with the shared wgpu
+//! device into the renderer's texture, shows it as an egui image, and
+//! paints the saliency labels.
+
+use eframe::egui;
+use eframe::egui_wgpu;
+use glam::{Vec2, Vec3};
+
+use crate::input::Pointer;
+use crate::render::{Camera, Frame, Overlays, Renderer, View};
+
+use super::session::Session;
+
+/// The viewport's GPU side.
+pub struct Viewport {
+    renderer: Renderer,
+    texture: Option<(egui::TextureId, (u32, u32))>,
+    /// Camera.
+    pub view: View,
+    /// Overlay toggles.
+    pub overlays: Overlays,
+    /// CPU time of the last render call (recording and submitting), ms.
+    pub render_ms: f32,
+    /// Where the view was drawn last frame, and its camera.
+    last: Option<(egui::Rect, Camera)>,
+}
+
+impl Viewport {
+    /// A viewport on eframe's device.
+    pub fn new(rs: &egui_wgpu::RenderState, view: View) -> Self {
+        Viewport {
+            renderer: Renderer::new(&rs.adapter, &rs.device, &rs.queue),
+            texture: None,
+            view,
+            overlays: Overlays::default(),
+            render_ms: 0.0,
+            last: None,
+        }
+    }
+
+    /// Switch between first person and orbit.
+    pub fn toggle_view(&mut self) {
+        self.view = match self.view {
+            View::First => View::ORBIT,
+            View::Orbit { .. } => View::First,
+        };
+    }
+
+    /// The pointer over the view as drawn last frame: the glove offset
+    /// under it (first person, while it moves), the buttons pressed over
+    /// it, and the wheel; in the orbit view dragging turns the camera and
+    /// the wheel zooms. Read before stepping, so the frame drawn after
+    /// shows this frame's input.
+    pub fn pointer(
+        &mut self,
+        ctx: &egui::Context,
+        session: &Session,
+        active_glove: usize,
+    ) -> (Pointer, f32) {
+        let mut pointer = Pointer::default();
+        let Some((rect, camera)) = self.last else {
+            return (pointer, 0.0);
+        };
+        let (pos, moving, pressed, down, delta, mut wheel) = ctx.input(|i| {
+            (
+                i.pointer.hover_pos(),
+                i.pointer.is_moving() || i.pointer.delta() != egui::Vec2::ZERO,
+                [
+                    egui::PointerButton::Primary,
+                    egui::PointerButton::Secondary,
+                    egui::PointerButton::Middle,
+                ]
+                .map(|b| i.pointer.button_pressed(b)),
+                i.pointer.primary_down(),
+                i.pointer.delta(),
+                i.smooth_scroll_delta.y,
+            )
+        });
+        // Over the view and not under a popup or window on top of it.
+        let over_view = |p: &egui::Pos2| {
+            rect.contains(*p)
+                && ctx
+                    .layer_id_at(*p)
+                    .is_none_or(|l| l.order == egui::Order::Background)
+        };
+        let Some(pos) = pos.filter(over_view) else {
+            return (pointer, 0.0);
+        };
+        let size = Vec2::new(rect.width(), rect.height());
+        match &mut self.view {
+            View::First => {
+                let local = Vec2::new(pos.x - rect.min.x, pos.y - rect.min.y);
+                let (o, d) = camera.ray(local, size);
+                let rest = session.control.glove_rest(active_glove).as_vec3();
+                // Follow the pointer's motion (a pointer resting over the
+                // view at start does not grab the glove).
+                if moving && d.z.abs() > 1e-4 {
+                    let hit = o + d * ((rest.z - o.z) / d.z);
+                    pointer.glove_offset = Some(Vec3::new(hit.x - rest.x, hit.y - rest.y, 0.0));
+                }
+                pointer.pressed = pressed;
+            }
+            View::Orbit {
+                yaw,
+                pitch,
+                distance,
+            } => {
+                if down {
+                    *yaw -= delta.x * 0.01;
+                    *pitch = (*pitch + delta.y * 0.01).clamp(-1.2, 1.4);
+                }
+                *distance = (*distance * (1.0 - wheel * 0.002)).clamp(0.3, 6.0);
+                wheel = 0.0;
+            }
+        }
+        (pointer, wheel)
+    }
+
+    /// Draw the session into `ui`'s remaining space.
+    pub fn draw(&mut self, ui: &mut egui::Ui, rs: &egui_wgpu::RenderState, session: &Session) {
+        let rect = ui.available_rect_before_wrap();
+        let ppp = ui.ctx().pixels_per_point();
+        let px = (
+            ((rect.width() * ppp).round() as u32).max(16),
+            ((rect.height() * ppp).round() as u32).max(16),
+        );
+        let aspect = px.0 as f32 / px.1 as f32;
+        let frame = Frame::build(&session.sim, self.view, self.overlays, aspect);
+        let started = std::time::Instant::now();
+        self.renderer
+            .render(&frame, &session.sim.face.mesh.triangles, px);
+        self.render_ms = started.elapsed().as_secs_f32() * 1e3;
+        let view = self.renderer.color_view_unorm().expect("rendered");
+        let id = {
+            let mut egui_r = rs.renderer.write();
+            match self.texture {
+                Some((id, size)) if size == px => id,
+                Some((id, _)) => {
+                    egui_r.update_egui_texture_from_wgpu_texture(
+                        &rs.device,
+                        &view,
+                        wgpu::FilterMode::Linear,
+                        id,
+                    );
+                    id
+                }
+                None => egui_r.register_native_texture(&rs.device, &view, wgpu::FilterMode::Linear),
+            }
+        };
+        self.texture = Some((id, px));
+        ui.put(
+            rect,
+            egui::Image::new(egui::load::SizedTexture::new(id, rect.size()))
+                .sense(egui::Sense::click_and_drag()),
+        );
+        self.last = Some((rect, frame.camera));
+        let size = Vec2::new(rect.width(), rect.height());
+        let painter = ui.painter_at(rect);
+        for l in &frame.labels {
+            if let Some(p) = frame.camera.project(l.at, size) {
+                painter.text(
+                    rect.min + egui::vec2(p.x, p.y),
+                    egui::Align2::CENTER_BOTTOM,
+                    &l.text,
+                    egui::FontId::monospace(12.0),
+                    egui::Color32::from_rgb(255, 230, 120),
+                );
+            }
+        }
+    }
+}

@@ -1,0 +1,157 @@
+//! Cameras: first person from the opponent's head, and an orbit view.
+
+use glam::{Mat4, Vec2, Vec3, Vec4Swizzles};
+
+use crate::body::seg;
+use crate::sim::Sim;
+use crate::world::opp;
+
+/// Which camera to render from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum View {
+    /// From the opponent's (your) head toward the VH's face: the VH looks at you.
+    First,
+    /// Around the VH's head: `yaw` (about +Y, 0 = from the VH's front),
+    /// `pitch` (up), `distance`, all about the VH's head centre.
+    Orbit {
+        /// Radians about +Y; 0 looks at the VH's face from its front.
+        yaw: f32,
+        /// Radians above the horizon.
+        pitch: f32,
+        /// Metres from the VH's head centre.
+        distance: f32,
+    },
+}
+
+impl View {
+    /// The default orbit: three-quarter view from the VH's front left, a
+    /// little above, far enough to see both boxers.
+    pub const ORBIT: View = View::Orbit {
+        yaw: 0.9,
+        pitch: 0.25,
+        distance: 2.2,
+    };
+
+    /// Parse `first` or `orbit`.
+    pub fn parse(s: &str) -> Option<View> {
+        match s {
+            "first" => Some(View::First),
+            "orbit" => Some(View::ORBIT),
+            _ => None,
+        }
+    }
+}
+
+/// A pinhole camera (right-handed, +Y up).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// Eye position, world.
+    pub eye: Vec3,
+    /// Point looked at, world.
+    pub target: Vec3,
+    /// Vertical field of view, radians.
+    pub fov_y: f32,
+    /// Width / height.
+    pub aspect: f32,
+}
+
+/// Vertical field of view of the first-person camera: about what a face at
+/// 0.9 m fills for a person focused on it (the head and the gloves in frame).
+const FIRST_FOV_DEG: f32 = 40.0;
+/// Orbit camera field of view.
+const ORBIT_FOV_DEG: f32 = 45.0;
+
+impl Camera {
+    /// The camera of `view` for the current state of `sim`.
+    pub fn of(view: View, sim: &Sim, aspect: f32) -> Camera {
+        let w = &sim.world;
+        let vh_head = w.pose(seg::HEAD).0;
+        match view {
+            View::First => {
+                let eye = w.pose(w.opponent[opp::HEAD]).0;
+                // Look at the VH's face (between its eyes), not the head centre.
+                let face = (w.pose(seg::EYE_L).0 + w.pose(seg::EYE_R).0) / 2.0;
+                Camera {
+                    eye,
+                    target: face - Vec3::Y * 0.04,
+                    fov_y: FIRST_FOV_DEG.to_radians(),
+                    aspect,
+                }
+            }
+            View::Orbit {
+                yaw,
+                pitch,
+                distance,
+            } => {
+                let dir = Vec3::new(
+                    pitch.cos() * yaw.sin(),
+                    pitch.sin(),
+                    pitch.cos() * yaw.cos(),
+                );
+                Camera {
+                    eye: vh_head + dir * distance,
+                    target: vh_head,
+                    fov_y: ORBIT_FOV_DEG.to_radians(),
+                    aspect,
+                }
+            }
+        }
+    }
+
+    /// World to view matrix.
+    pub fn view(&self) -> Mat4 {
+        glam::camera::rh::view::look_at_mat4(self.eye, self.target, Vec3::Y)
+    }
+
+    /// World to clip matrix (wgpu clip space: z in [0, 1]).
+    pub fn view_proj(&self) -> Mat4 {
+        let proj =
+            glam::camera::rh::proj::directx::perspective(self.fov_y, self.aspect, 0.02, 30.0);
+        proj * self.view()
+    }
+
+    /// Pixel position (origin top left) of a world point in an image of
+    /// `size` pixels, or `None` behind the camera.
+    pub fn project(&self, p: Vec3, size: Vec2) -> Option<Vec2> {
+        let c = self.view_proj() * p.extend(1.0);
+        if c.w <= 1e-6 {
+            return None;
+        }
+        let ndc = c.xy() / c.w;
+        Some(Vec2::new(
+            (ndc.x + 1.0) * 0.5 * size.x,
+            (1.0 - ndc.y) * 0.5 * size.y,
+        ))
+    }
+
+    /// Ray (origin, unit direction) through a pixel of an image of `size`.
+    pub fn ray(&self, pixel: Vec2, size: Vec2) -> (Vec3, Vec3) {
+        let ndc = Vec2::new(pixel.x / size.x * 2.0 - 1.0, 1.0 - pixel.y / size.y * 2.0);
+        let inv = self.view_proj().inverse();
+        let far = inv.project_point3(ndc.extend(1.0));
+        (self.eye, (far - self.eye).normalize_or(Vec3::NEG_Z))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn project_and_ray_are_inverse() {
+        let cam = Camera {
+            eye: Vec3::new(0.0, 1.7, 0.9),
+            target: Vec3::new(0.0, 1.68, 0.0),
+            fov_y: 0.7,
+            aspect: 1.5,
+        };
+        let size = Vec2::new(300.0, 200.0);
+        let p = Vec3::new(0.1, 1.6, 0.2);
+        let px = cam.project(p, size).expect("in front");
+        let (o, d) = cam.ray(px, size);
+        let closest = o + d * (p - o).dot(d);
+        assert!(closest.distance(p) < 1e-4, "{closest} vs {p}");
+        let centre = cam.project(cam.target, size).unwrap();
+        assert!(centre.distance(size / 2.0) < 1e-3);
+    }
+}

@@ -1,0 +1,359 @@
+//! What to draw for one state of the simulation: a list of shaded primitives,
+//! the deformed face, overlay lines and labels. Built on the CPU from a
+//! [`Sim`] and independent of the GPU, so it is deterministic and testable.
+
+use glam::{DVec3, Mat4, Quat, Vec3};
+use rapier3d::prelude::TypedShape;
+
+use crate::body::{BodyPlan, seg};
+use crate::face::mesh::compute_normals;
+use crate::math::{dir_from_yaw_pitch, yaw_pitch_of};
+use crate::sim::Sim;
+use crate::world::{Owner, opp};
+
+use super::camera::{Camera, View};
+use super::geometry::Vertex;
+
+/// Which mesh a draw uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum MeshKey {
+    /// Unit sphere.
+    Sphere,
+    /// Unit cube.
+    Cube,
+    /// The floor square.
+    Floor,
+    /// A capsule, by the bits of its half height and radius.
+    Capsule {
+        /// `f32::to_bits` of the half height.
+        half_height: u32,
+        /// `f32::to_bits` of the radius.
+        radius: u32,
+    },
+    /// The deformed face ([`Frame::face`]).
+    Face,
+}
+
+/// How a surface is shaded.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Material {
+    /// Lit with the instance colour.
+    Plain = 0,
+    /// Eyeball: sclera, iris and pupil around the local +Z pole.
+    Eye = 1,
+    /// Checkered floor.
+    Floor = 2,
+}
+
+/// One mesh instance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Draw {
+    /// Mesh.
+    pub mesh: MeshKey,
+    /// Local to world.
+    pub model: Mat4,
+    /// Linear RGBA base colour.
+    pub color: [f32; 4],
+    /// Shading.
+    pub material: Material,
+}
+
+/// Overlay line vertex (world position, linear RGBA).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct LineVertex {
+    /// Position, world.
+    pub pos: [f32; 3],
+    /// Colour.
+    pub color: [f32; 4],
+}
+
+/// A text label at a world point (drawn by the window, not offscreen).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Label {
+    /// Anchor, world.
+    pub at: Vec3,
+    /// Text.
+    pub text: String,
+}
+
+/// Overlay toggles.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Overlays {
+    /// Each eye's line of sight up to the gaze point, and the gaze point.
+    pub gaze_rays: bool,
+    /// Each eye's field of view.
+    pub fov_cones: bool,
+    /// Saliency of every visible body as a label.
+    pub saliency_labels: bool,
+    /// Local axes of every VH segment.
+    pub joint_frames: bool,
+}
+
+/// Everything needed to draw one picture.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    /// The camera.
+    pub camera: Camera,
+    /// Shaded instances.
+    pub draws: Vec<Draw>,
+    /// Deformed face vertices in the face frame (drawn with [`MeshKey::Face`]).
+    pub face: Vec<Vertex>,
+    /// Overlay lines (pairs of vertices).
+    pub lines: Vec<LineVertex>,
+    /// Overlay labels.
+    pub labels: Vec<Label>,
+}
+
+const SKIN: [f32; 4] = [0.78, 0.52, 0.40, 1.0];
+const SHIRT: [f32; 4] = [0.16, 0.22, 0.40, 1.0];
+const VH_GLOVE: [f32; 4] = [0.70, 0.06, 0.05, 1.0];
+const YOUR_GLOVE: [f32; 4] = [0.08, 0.22, 0.75, 1.0];
+const YOUR_HEAD: [f32; 4] = [0.45, 0.48, 0.55, 1.0];
+const PROP: [f32; 4] = [0.85, 0.65, 0.12, 1.0];
+const STAND: [f32; 4] = [0.30, 0.30, 0.32, 1.0];
+const WHITE: [f32; 4] = [1.0, 1.0, 1.0, 1.0];
+/// Length of drawn field-of-view edges and joint axes, m.
+const FOV_LEN: f32 = 0.5;
+const AXIS_LEN: f32 = 0.06;
+
+/// Offset of the face frame's origin (midway between the eyes at rest) from
+/// the head body's centre, in the head body's frame.
+pub fn face_offset(plan: &BodyPlan) -> Vec3 {
+    (BodyPlan::eye_centre(0) + BodyPlan::eye_centre(1)) / 2.0 - plan.segments[seg::HEAD].centre
+}
+
+fn colour_of(owner: Owner, body: usize, sim: &Sim) -> [f32; 4] {
+    match owner {
+        Owner::Vh(s) if s == seg::GLOVE_L || s == seg::GLOVE_R => VH_GLOVE,
+        Owner::Vh(seg::TORSO) => SHIRT,
+        Owner::Vh(_) => SKIN,
+        Owner::Opponent if body == sim.world.opponent[opp::HEAD] => YOUR_HEAD,
+        Owner::Opponent => YOUR_GLOVE,
+        Owner::Prop => PROP,
+    }
+}
+
+impl Frame {
+    /// The picture of `sim` now from `view`, for an image of aspect `aspect`.
+    pub fn build(sim: &Sim, view: View, overlays: Overlays, aspect: f32) -> Frame {
+        let camera = Camera::of(view, sim, aspect);
+        let w = &sim.world;
+        let mut draws = vec![
+            Draw {
+                mesh: MeshKey::Floor,
+                model: Mat4::from_scale(Vec3::splat(4.0)),
+                color: WHITE,
+                material: Material::Floor,
+            },
+            // The rigid stand the VH's torso sits on (not a physics body).
+            Draw {
+                mesh: capsule_key(0.5, 0.035),
+                model: Mat4::from_translation(Vec3::new(0.0, 0.5, 0.0)),
+                color: STAND,
+                material: Material::Plain,
+            },
+        ];
+        for (i, b) in w.bodies.iter().enumerate() {
+            match b.owner {
+                Owner::Vh(seg::HEAD) => continue, // the face mesh is the head
+                Owner::Vh(s) if s == seg::EYE_L || s == seg::EYE_R => {
+                    let (p, q) = w.pose(i);
+                    let r = crate::body::eye::RADIUS;
+                    draws.push(Draw {
+                        mesh: MeshKey::Sphere,
+                        model: Mat4::from_scale_rotation_translation(Vec3::splat(r), q, p),
+                        color: WHITE,
+                        material: Material::Eye,
+                    });
+                    continue;
+                }
+                Owner::Opponent if view == View::First && i == w.opponent[opp::HEAD] => continue,
+                _ => {}
+            }
+            let c = &w.phys.colliders[b.collider];
+            let pose = c.position();
+            let at = Mat4::from_rotation_translation(pose.rotation, pose.translation);
+            let (mesh, local) = match c.shape().as_typed_shape() {
+                TypedShape::Ball(s) => (MeshKey::Sphere, Mat4::from_scale(Vec3::splat(s.radius))),
+                TypedShape::Cuboid(s) => (MeshKey::Cube, Mat4::from_scale(s.half_extents)),
+                TypedShape::Capsule(s) => {
+                    let (a, bb) = (s.segment.a, s.segment.b);
+                    let axis = Quat::from_rotation_arc(Vec3::Y, (bb - a).normalize_or(Vec3::Y));
+                    (
+                        capsule_key(a.distance(bb) / 2.0, s.radius),
+                        Mat4::from_rotation_translation(axis, (a + bb) / 2.0),
+                    )
+                }
+                _ => continue,
+            };
+            draws.push(Draw {
+                mesh,
+                model: at * local,
+                color: colour_of(b.owner, i, sim),
+                material: Material::Plain,
+            });
+        }
+        let (head_p, head_q) = w.pose(seg::HEAD);
+        draws.push(Draw {
+            mesh: MeshKey::Face,
+            model: Mat4::from_rotation_translation(head_q, head_p)
+                * Mat4::from_translation(face_offset(&w.plan)),
+            color: SKIN,
+            material: Material::Plain,
+        });
+        let mut frame = Frame {
+            camera,
+            draws,
+            face: face_vertices(sim),
+            lines: Vec::new(),
+            labels: Vec::new(),
+        };
+        frame.add_overlays(sim, overlays);
+        frame
+    }
+
+    fn line(&mut self, a: Vec3, b: Vec3, color: [f32; 4]) {
+        self.lines.push(LineVertex {
+            pos: a.to_array(),
+            color,
+        });
+        self.lines.push(LineVertex {
+            pos: b.to_array(),
+            color,
+        });
+    }
+
+    fn add_overlays(&mut self, sim: &Sim, o: Overlays) {
+        let w = &sim.world;
+        let eyes = [seg::EYE_L, seg::EYE_R].map(|e| w.pose(e));
+        let head_q = w.pose(seg::HEAD).1;
+        if o.gaze_rays
+            && let Some(s) = sim.last()
+        {
+            let gp = s.gaze_point.as_vec3();
+            for (k, (p, q)) in eyes.iter().enumerate() {
+                let colour = [[0.1, 1.0, 0.2, 1.0], [0.1, 0.9, 1.0, 1.0]][k];
+                self.line(*p, *p + *q * Vec3::Z * p.distance(gp), colour);
+            }
+            let yellow = [1.0, 0.9, 0.1, 1.0];
+            for d in [Vec3::X, Vec3::Y, Vec3::Z] {
+                self.line(gp - d * 0.02, gp + d * 0.02, yellow);
+            }
+        }
+        if o.fov_cones {
+            let f = &sim.scene.vh.vision.field;
+            for (k, (p, q)) in eyes.iter().enumerate() {
+                // The field is a yaw/pitch rectangle about the eye's line of
+                // sight in the head frame (vision::in_field).
+                let los = (head_q.inverse() * *q * Vec3::Z).as_dvec3();
+                let (ly, lp) = yaw_pitch_of(los);
+                let (temporal, nasal) = if k == 0 {
+                    (f.temporal_deg, f.nasal_deg)
+                } else {
+                    (f.nasal_deg, f.temporal_deg)
+                };
+                let (y0, y1) = (ly - nasal.to_radians(), ly + temporal.to_radians());
+                let (p0, p1) = (lp - f.down_deg.to_radians(), lp + f.up_deg.to_radians());
+                let edge =
+                    |a: f64, b: f64| *p + head_q * dir_from_yaw_pitch(a, b).as_vec3() * FOV_LEN;
+                let colour = [1.0, 0.5, 0.1, 0.8];
+                let corners = [(y0, p0), (y1, p0), (y1, p1), (y0, p1)];
+                for (n, &(a, b)) in corners.iter().enumerate() {
+                    self.line(*p, edge(a, b), colour);
+                    let (c, d) = corners[(n + 1) % 4];
+                    const STEPS: usize = 8;
+                    for i in 0..STEPS {
+                        let t0 = i as f64 / STEPS as f64;
+                        let t1 = (i + 1) as f64 / STEPS as f64;
+                        let lerp = |t: f64| (a + (c - a) * t, b + (d - b) * t);
+                        let (u0, v0) = lerp(t0);
+                        let (u1, v1) = lerp(t1);
+                        self.line(edge(u0, v0), edge(u1, v1), colour);
+                    }
+                }
+            }
+        }
+        if o.joint_frames {
+            for (i, b) in w.bodies.iter().enumerate() {
+                if let Owner::Vh(_) = b.owner {
+                    let (p, q) = w.pose(i);
+                    self.line(p, p + q * Vec3::X * AXIS_LEN, [1.0, 0.1, 0.1, 1.0]);
+                    self.line(p, p + q * Vec3::Y * AXIS_LEN, [0.1, 1.0, 0.1, 1.0]);
+                    self.line(p, p + q * Vec3::Z * AXIS_LEN, [0.2, 0.3, 1.0, 1.0]);
+                }
+            }
+        }
+        if o.saliency_labels {
+            let winner = sim.attention.current().and_then(|c| c.body);
+            for s in sim.seen() {
+                let mark = if Some(s.body) == winner { " *" } else { "" };
+                self.labels.push(Label {
+                    at: (s.position + DVec3::Y * 0.08).as_vec3(),
+                    text: format!(
+                        "{} {:.2}{mark}",
+                        w.bodies[s.body].name, sim.attention.scores[s.body]
+                    ),
+                });
+            }
+        }
+    }
+}
+
+/// Mesh key of a capsule.
+pub fn capsule_key(half_height: f32, radius: f32) -> MeshKey {
+    MeshKey::Capsule {
+        half_height: half_height.to_bits(),
+        radius: radius.to_bits(),
+    }
+}
+
+/// The face deformed by the current face state, with recomputed normals.
+fn face_vertices(sim: &Sim) -> Vec<Vertex> {
+    let mesh = &sim.face.mesh;
+    let mut pos = vec![Vec3::ZERO; mesh.positions.len()];
+    crate::face::deform(&sim.face, &sim.face_state, &mut pos);
+    let normals = compute_normals(&pos, &mesh.triangles);
+    pos.iter()
+        .zip(&normals)
+        .map(|(p, n)| Vertex::new(*p, *n))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::LoadedScene;
+
+    #[test]
+    fn frame_has_every_part_and_is_deterministic() {
+        let mut sim = Sim::new(&LoadedScene::default_scene());
+        for _ in 0..50 {
+            sim.step();
+        }
+        let all = Overlays {
+            gaze_rays: true,
+            fov_cones: true,
+            saliency_labels: true,
+            joint_frames: true,
+        };
+        let f = Frame::build(&sim, View::ORBIT, all, 1.5);
+        let eyes = f
+            .draws
+            .iter()
+            .filter(|d| d.material == Material::Eye)
+            .count();
+        assert_eq!(eyes, 2);
+        assert!(f.draws.iter().any(|d| d.mesh == MeshKey::Face));
+        assert_eq!(f.face.len(), sim.face.mesh.positions.len());
+        assert!(!f.lines.is_empty() && f.lines.len() % 2 == 0);
+        assert!(!f.labels.is_empty());
+        assert_eq!(f, Frame::build(&sim, View::ORBIT, all, 1.5));
+        let first = Frame::build(&sim, View::First, Overlays::default(), 1.5);
+        assert_eq!(
+            first.draws.len() + 1,
+            f.draws.len(),
+            "no own head in first person"
+        );
+    }
+}

@@ -1,0 +1,144 @@
+//! Tessellation of the primitive shapes the world is made of (spheres,
+//! capsules along local +Y, boxes, the floor), in their own local frames.
+
+use std::f32::consts::{PI, TAU};
+
+use glam::Vec3;
+
+/// One mesh vertex: position and unit normal, local frame.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct Vertex {
+    /// Position.
+    pub pos: [f32; 3],
+    /// Unit normal.
+    pub normal: [f32; 3],
+}
+
+impl Vertex {
+    /// A vertex from glam vectors.
+    pub fn new(pos: Vec3, normal: Vec3) -> Self {
+        Vertex {
+            pos: pos.to_array(),
+            normal: normal.to_array(),
+        }
+    }
+}
+
+/// Indexed triangle mesh on the CPU.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MeshData {
+    /// Vertices.
+    pub vertices: Vec<Vertex>,
+    /// Triangle list indices.
+    pub indices: Vec<u32>,
+}
+
+/// Latitude bands of spheres and capsule caps.
+const RINGS: u32 = 24;
+/// Longitude segments.
+const SEGMENTS: u32 = 32;
+
+/// Surface of revolution about +Y from a profile of (radius, y, normal)
+/// points ordered from the top pole to the bottom pole.
+fn lathe(profile: &[(f32, f32, Vec3)]) -> MeshData {
+    let mut m = MeshData::default();
+    for &(r, y, n) in profile {
+        for s in 0..=SEGMENTS {
+            let phi = TAU * s as f32 / SEGMENTS as f32;
+            let (sin, cos) = phi.sin_cos();
+            let radial = Vec3::new(sin, 0.0, cos);
+            let normal = (radial * n.x + Vec3::Y * n.y).normalize_or(Vec3::Y);
+            m.vertices
+                .push(Vertex::new(radial * r + Vec3::Y * y, normal));
+        }
+    }
+    let row = SEGMENTS + 1;
+    for i in 0..profile.len() as u32 - 1 {
+        for s in 0..SEGMENTS {
+            let a = i * row + s;
+            let b = a + row;
+            m.indices.extend_from_slice(&[a, b, a + 1, a + 1, b, b + 1]);
+        }
+    }
+    m
+}
+
+/// Unit sphere (radius 1) centred at the origin; its +Z pole is where an
+/// eyeball's pupil is drawn.
+pub fn sphere() -> MeshData {
+    capsule(0.0, 1.0)
+}
+
+/// Capsule along local Y: a cylinder of half-length `half_height` capped by
+/// hemispheres of `radius` (the rapier/parry convention).
+pub fn capsule(half_height: f32, radius: f32) -> MeshData {
+    let mut profile = Vec::new();
+    let half = RINGS / 2;
+    for i in 0..=half {
+        let theta = PI / 2.0 * (1.0 - i as f32 / half as f32); // pi/2 .. 0
+        let n = Vec3::new(theta.cos(), theta.sin(), 0.0);
+        profile.push((radius * n.x, half_height + radius * n.y, n));
+    }
+    for i in 0..=half {
+        let theta = -PI / 2.0 * i as f32 / half as f32; // 0 .. -pi/2
+        let n = Vec3::new(theta.cos(), theta.sin(), 0.0);
+        profile.push((radius * n.x, -half_height + radius * n.y, n));
+    }
+    lathe(&profile)
+}
+
+/// Unit cube (half extent 1) with flat faces.
+pub fn cube() -> MeshData {
+    let mut m = MeshData::default();
+    for axis in [Vec3::X, Vec3::Y, Vec3::Z] {
+        for sign in [1.0, -1.0] {
+            let n = axis * sign;
+            let u = if axis == Vec3::Y { Vec3::Z } else { Vec3::Y };
+            let v = n.cross(u);
+            let base = m.vertices.len() as u32;
+            for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+                m.vertices.push(Vertex::new(n + u * a + v * b, n));
+            }
+            m.indices
+                .extend_from_slice(&[base, base + 1, base + 2, base, base + 2, base + 3]);
+        }
+    }
+    m
+}
+
+/// Square in the XZ plane, half extent 1, normal +Y.
+pub fn floor() -> MeshData {
+    let v = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+        .map(|(x, z)| Vertex::new(Vec3::new(x, 0.0, z), Vec3::Y));
+    MeshData {
+        vertices: v.to_vec(),
+        indices: vec![0, 2, 1, 0, 3, 2],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn capsule_spans_its_half_height_plus_radius() {
+        let m = capsule(0.1, 0.05);
+        let (lo, hi) = m.vertices.iter().fold((f32::MAX, f32::MIN), |(lo, hi), v| {
+            (lo.min(v.pos[1]), hi.max(v.pos[1]))
+        });
+        assert!((hi - 0.15).abs() < 1e-6 && (lo + 0.15).abs() < 1e-6);
+        assert!(m.indices.iter().all(|&i| (i as usize) < m.vertices.len()));
+        for v in &m.vertices {
+            assert!((Vec3::from(v.normal).length() - 1.0).abs() < 1e-5);
+        }
+    }
+
+    #[test]
+    fn sphere_and_cube_are_closed_index_lists() {
+        for m in [sphere(), cube(), floor()] {
+            assert_eq!(m.indices.len() % 3, 0);
+            assert!(m.indices.iter().all(|&i| (i as usize) < m.vertices.len()));
+        }
+    }
+}

@@ -1,0 +1,590 @@
+//! The wgpu renderer: draws a [`Frame`] into its own colour texture (4x
+//! MSAA resolved into an sRGB texture), which is read back for PNGs or shown
+//! by the window as an egui image. The same code path serves both.
+
+use std::collections::HashMap;
+use std::num::NonZeroU64;
+
+use glam::{Mat3, Mat4, Vec3};
+use wgpu::util::DeviceExt;
+
+use super::RenderError;
+use super::frame::{Frame, LineVertex, MeshKey};
+use super::geometry::{self, MeshData, Vertex};
+
+/// Format of the resolved colour texture (PNG bytes are its raw contents).
+pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+/// The same texture viewed without sRGB decoding, as egui samples its images.
+pub const COLOR_FORMAT_UNORM: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Dynamic-offset stride of the per-instance uniforms.
+const INSTANCE_STRIDE: u64 = 256;
+/// Background (linear RGB).
+const CLEAR: wgpu::Color = wgpu::Color {
+    r: 0.035,
+    g: 0.04,
+    b: 0.05,
+    a: 1.0,
+};
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct Globals {
+    view_proj: [[f32; 4]; 4],
+    camera: [f32; 4],
+    key_dir: [f32; 4],
+    fill_dir: [f32; 4],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct Instance {
+    model: [[f32; 4]; 4],
+    normal: [[f32; 4]; 4],
+    color: [f32; 4],
+    params: [f32; 4],
+}
+
+struct GpuMesh {
+    vertices: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    count: u32,
+}
+
+struct Target {
+    size: (u32, u32),
+    color: wgpu::Texture,
+    color_view: wgpu::TextureView,
+    msaa_view: Option<wgpu::TextureView>,
+    depth_view: wgpu::TextureView,
+}
+
+/// A grown-on-demand GPU buffer.
+struct Growable {
+    buffer: wgpu::Buffer,
+    capacity: u64,
+    usage: wgpu::BufferUsages,
+    label: &'static str,
+}
+
+impl Growable {
+    fn new(device: &wgpu::Device, label: &'static str, usage: wgpu::BufferUsages) -> Self {
+        let capacity = 64 * 1024;
+        Growable {
+            buffer: Self::alloc(device, label, usage, capacity),
+            capacity,
+            usage,
+            label,
+        }
+    }
+
+    fn alloc(
+        device: &wgpu::Device,
+        label: &str,
+        usage: wgpu::BufferUsages,
+        size: u64,
+    ) -> wgpu::Buffer {
+        device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size,
+            usage: usage | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
+    }
+
+    /// Make room for `size` bytes; true if the buffer was replaced.
+    fn reserve(&mut self, device: &wgpu::Device, size: u64) -> bool {
+        if size <= self.capacity {
+            return false;
+        }
+        self.capacity = size.next_power_of_two();
+        self.buffer = Self::alloc(device, self.label, self.usage, self.capacity);
+        true
+    }
+}
+
+/// The renderer and its GPU resources.
+pub struct Renderer {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    samples: u32,
+    mesh_pipeline: wgpu::RenderPipeline,
+    line_pipeline: wgpu::RenderPipeline,
+    globals: wgpu::Buffer,
+    globals_bind: wgpu::BindGroup,
+    instance_layout: wgpu::BindGroupLayout,
+    instances: Growable,
+    instance_bind: wgpu::BindGroup,
+    lines: Growable,
+    meshes: HashMap<MeshKey, GpuMesh>,
+    face: Option<(GpuMesh, usize)>,
+    target: Option<Target>,
+}
+
+fn uniform_layout(device: &wgpu::Device, dynamic: bool, size: u64) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("shisen uniforms"),
+        entries: &[wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: dynamic,
+                min_binding_size: NonZeroU64::new(size),
+            },
+            count: None,
+        }],
+    })
+}
+
+fn bind(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    buffer: &wgpu::Buffer,
+    size: u64,
+) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("shisen uniforms"),
+        layout,
+        entries: &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer,
+                offset: 0,
+                size: NonZeroU64::new(size),
+            }),
+        }],
+    })
+}
+
+impl Renderer {
+    /// Build the pipelines on `device` (a clone of the handle is kept).
+    pub fn new(adapter: &wgpu::Adapter, device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
+        let samples = if adapter
+            .get_texture_format_features(COLOR_FORMAT)
+            .flags
+            .sample_count_supported(4)
+        {
+            4
+        } else {
+            1
+        };
+        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("shisen shader"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("shader.wgsl").into()),
+        });
+        let globals_size = size_of::<Globals>() as u64;
+        let instance_size = size_of::<Instance>() as u64;
+        let globals_layout = uniform_layout(device, false, globals_size);
+        let instance_layout = uniform_layout(device, true, instance_size);
+        let globals = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("shisen globals"),
+            size: globals_size,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let globals_bind = bind(device, &globals_layout, &globals, globals_size);
+        let instances = Growable::new(device, "shisen instances", wgpu::BufferUsages::UNIFORM);
+        let instance_bind = bind(device, &instance_layout, &instances.buffer, instance_size);
+        let lines = Growable::new(device, "shisen lines", wgpu::BufferUsages::VERTEX);
+
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("shisen"),
+            bind_group_layouts: &[Some(&globals_layout), Some(&instance_layout)],
+            immediate_size: 0,
+        });
+        let mesh_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
+        let line_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x4];
+        let pipeline = |vs: &str,
+                        fs: &str,
+                        attrs: &[wgpu::VertexAttribute],
+                        stride: usize,
+                        topology: wgpu::PrimitiveTopology,
+                        depth_write: bool,
+                        compare: wgpu::CompareFunction| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(vs),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module: &shader,
+                    entry_point: Some(vs),
+                    compilation_options: Default::default(),
+                    buffers: &[Some(wgpu::VertexBufferLayout {
+                        array_stride: stride as u64,
+                        step_mode: wgpu::VertexStepMode::Vertex,
+                        attributes: attrs,
+                    })],
+                },
+                primitive: wgpu::PrimitiveState {
+                    topology,
+                    cull_mode: None,
+                    ..Default::default()
+                },
+                depth_stencil: Some(wgpu::DepthStencilState {
+                    format: DEPTH_FORMAT,
+                    depth_write_enabled: Some(depth_write),
+                    depth_compare: Some(compare),
+                    stencil: Default::default(),
+                    bias: Default::default(),
+                }),
+                multisample: wgpu::MultisampleState {
+                    count: samples,
+                    ..Default::default()
+                },
+                fragment: Some(wgpu::FragmentState {
+                    module: &shader,
+                    entry_point: Some(fs),
+                    compilation_options: Default::default(),
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format: COLOR_FORMAT,
+                        blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let mesh_pipeline = pipeline(
+            "vs_mesh",
+            "fs_mesh",
+            &mesh_attrs,
+            size_of::<Vertex>(),
+            wgpu::PrimitiveTopology::TriangleList,
+            true,
+            wgpu::CompareFunction::Less,
+        );
+        // Overlays are drawn over everything so rays inside the head show.
+        let line_pipeline = pipeline(
+            "vs_line",
+            "fs_line",
+            &line_attrs,
+            size_of::<LineVertex>(),
+            wgpu::PrimitiveTopology::LineList,
+            false,
+            wgpu::CompareFunction::Always,
+        );
+        let mut r = Renderer {
+            device: device.clone(),
+            queue: queue.clone(),
+            samples,
+            mesh_pipeline,
+            line_pipeline,
+            globals,
+            globals_bind,
+            instance_layout,
+            instances,
+            instance_bind,
+            lines,
+            meshes: HashMap::new(),
+            face: None,
+            target: None,
+        };
+        r.upload(MeshKey::Sphere, &geometry::sphere());
+        r.upload(MeshKey::Cube, &geometry::cube());
+        r.upload(MeshKey::Floor, &geometry::floor());
+        r
+    }
+
+    fn make_mesh(&self, data: &MeshData, usage: wgpu::BufferUsages) -> GpuMesh {
+        let vertices = self
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("shisen vertices"),
+                contents: bytemuck::cast_slice(&data.vertices),
+                usage: wgpu::BufferUsages::VERTEX | usage,
+            });
+        let indices = self
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("shisen indices"),
+                contents: bytemuck::cast_slice(&data.indices),
+                usage: wgpu::BufferUsages::INDEX,
+            });
+        GpuMesh {
+            vertices,
+            indices,
+            count: data.indices.len() as u32,
+        }
+    }
+
+    fn upload(&mut self, key: MeshKey, data: &MeshData) {
+        let mesh = self.make_mesh(data, wgpu::BufferUsages::empty());
+        self.meshes.insert(key, mesh);
+    }
+
+    /// MSAA sample count in use (4 where the adapter supports it).
+    pub fn samples(&self) -> u32 {
+        self.samples
+    }
+
+    fn ensure_target(&mut self, size: (u32, u32)) {
+        if self.target.as_ref().is_some_and(|t| t.size == size) {
+            return;
+        }
+        let extent = wgpu::Extent3d {
+            width: size.0.max(1),
+            height: size.1.max(1),
+            depth_or_array_layers: 1,
+        };
+        let texture = |label, format, samples, usage, view_formats: &[wgpu::TextureFormat]| {
+            self.device.create_texture(&wgpu::TextureDescriptor {
+                label: Some(label),
+                size: extent,
+                mip_level_count: 1,
+                sample_count: samples,
+                dimension: wgpu::TextureDimension::D2,
+                format,
+                usage,
+                view_formats,
+            })
+        };
+        let attach = wgpu::TextureUsages::RENDER_ATTACHMENT;
+        let color = texture(
+            "shisen colour",
+            COLOR_FORMAT,
+            1,
+            attach | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::TEXTURE_BINDING,
+            &[COLOR_FORMAT_UNORM],
+        );
+        let msaa_view = (self.samples > 1).then(|| {
+            texture("shisen msaa", COLOR_FORMAT, self.samples, attach, &[])
+                .create_view(&Default::default())
+        });
+        let depth_view = texture("shisen depth", DEPTH_FORMAT, self.samples, attach, &[])
+            .create_view(&Default::default());
+        self.target = Some(Target {
+            size,
+            color_view: color.create_view(&Default::default()),
+            color,
+            msaa_view,
+            depth_view,
+        });
+    }
+
+    /// The resolved colour texture of the last render (sRGB).
+    pub fn color_texture(&self) -> Option<&wgpu::Texture> {
+        self.target.as_ref().map(|t| &t.color)
+    }
+
+    /// A view of the last render without sRGB decoding (what egui expects
+    /// of a native texture: its bytes are gamma-encoded already).
+    pub fn color_view_unorm(&self) -> Option<wgpu::TextureView> {
+        self.target.as_ref().map(|t| {
+            t.color.create_view(&wgpu::TextureViewDescriptor {
+                format: Some(COLOR_FORMAT_UNORM),
+                ..Default::default()
+            })
+        })
+    }
+
+    fn face_mesh(&mut self, frame: &Frame, triangles: &[[u32; 3]]) {
+        let stale = self
+            .face
+            .as_ref()
+            .is_none_or(|(m, n)| *n != frame.face.len() || m.count as usize != triangles.len() * 3);
+        if stale {
+            let data = MeshData {
+                vertices: frame.face.clone(),
+                indices: triangles.iter().flatten().copied().collect(),
+            };
+            let mesh = self.make_mesh(&data, wgpu::BufferUsages::COPY_DST);
+            self.face = Some((mesh, frame.face.len()));
+        } else if let Some((m, _)) = &self.face {
+            self.queue
+                .write_buffer(&m.vertices, 0, bytemuck::cast_slice(&frame.face));
+        }
+    }
+
+    /// Draw `frame` at `size` pixels; `face_triangles` index
+    /// [`Frame::face`]. Submits the work; the result is in
+    /// [`Renderer::color_texture`].
+    pub fn render(&mut self, frame: &Frame, face_triangles: &[[u32; 3]], size: (u32, u32)) {
+        self.ensure_target(size);
+        for d in &frame.draws {
+            if let MeshKey::Capsule {
+                half_height,
+                radius,
+            } = d.mesh
+                && !self.meshes.contains_key(&d.mesh)
+            {
+                let data = geometry::capsule(f32::from_bits(half_height), f32::from_bits(radius));
+                self.upload(d.mesh, &data);
+            }
+        }
+        self.face_mesh(frame, face_triangles);
+
+        let cam = &frame.camera;
+        let globals = Globals {
+            view_proj: cam.view_proj().to_cols_array_2d(),
+            camera: cam.eye.extend(1.0).to_array(),
+            key_dir: Vec3::new(-0.5, -0.8, -1.4)
+                .normalize()
+                .extend(0.0)
+                .to_array(),
+            fill_dir: Vec3::new(0.9, -0.15, -1.0)
+                .normalize()
+                .extend(0.0)
+                .to_array(),
+        };
+        self.queue
+            .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));
+        let mut bytes = vec![0u8; frame.draws.len() * INSTANCE_STRIDE as usize];
+        for (d, chunk) in frame
+            .draws
+            .iter()
+            .zip(bytes.chunks_mut(INSTANCE_STRIDE as usize))
+        {
+            let normal = Mat4::from_mat3(Mat3::from_mat4(d.model).inverse().transpose());
+            let inst = Instance {
+                model: d.model.to_cols_array_2d(),
+                normal: normal.to_cols_array_2d(),
+                color: d.color,
+                params: [d.material as u32 as f32, 0.0, 0.0, 0.0],
+            };
+            chunk[..size_of::<Instance>()].copy_from_slice(bytemuck::bytes_of(&inst));
+        }
+        if self.instances.reserve(&self.device, bytes.len() as u64) {
+            self.instance_bind = bind(
+                &self.device,
+                &self.instance_layout,
+                &self.instances.buffer,
+                size_of::<Instance>() as u64,
+            );
+        }
+        self.queue.write_buffer(&self.instances.buffer, 0, &bytes);
+        let line_bytes: &[u8] = bytemuck::cast_slice(&frame.lines);
+        self.lines.reserve(&self.device, line_bytes.len() as u64);
+        if !line_bytes.is_empty() {
+            self.queue.write_buffer(&self.lines.buffer, 0, line_bytes);
+        }
+
+        let target = self.target.as_ref().expect("ensured");
+        let mut enc = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("shisen frame"),
+            });
+        {
+            let (view, resolve) = match &target.msaa_view {
+                Some(m) => (m, Some(&target.color_view)),
+                None => (&target.color_view, None),
+            };
+            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("shisen scene"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view,
+                    depth_slice: None,
+                    resolve_target: resolve,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(CLEAR),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &target.depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Discard,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.mesh_pipeline);
+            pass.set_bind_group(0, &self.globals_bind, &[]);
+            for (i, d) in frame.draws.iter().enumerate() {
+                let mesh = match d.mesh {
+                    MeshKey::Face => match &self.face {
+                        Some((m, _)) => m,
+                        None => continue,
+                    },
+                    key => &self.meshes[&key],
+                };
+                pass.set_bind_group(
+                    1,
+                    &self.instance_bind,
+                    &[(i as u64 * INSTANCE_STRIDE) as u32],
+                );
+                pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+                pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..mesh.count, 0, 0..1);
+            }
+            if !frame.lines.is_empty() {
+                pass.set_pipeline(&self.line_pipeline);
+                pass.set_bind_group(1, &self.instance_bind, &[0]);
+                pass.set_vertex_buffer(0, self.lines.buffer.slice(..line_bytes.len() as u64));
+                pass.draw(0..frame.lines.len() as u32, 0..1);
+            }
+        }
+        self.queue.submit([enc.finish()]);
+    }
+
+    /// Block until the GPU has finished the submitted work.
+    pub fn wait(&self) {
+        if let Err(e) = self.device.poll(wgpu::PollType::wait_indefinitely()) {
+            tracing::warn!(error = %e, "device poll failed");
+        }
+    }
+
+    /// Copy the last render back to the CPU (blocks until the GPU is done).
+    pub fn read_rgba(&self) -> Result<image::RgbaImage, RenderError> {
+        let target = self.target.as_ref().ok_or(RenderError::NothingRendered)?;
+        let (w, h) = target.size;
+        let row = w * 4;
+        let padded =
+            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("shisen readback"),
+            size: padded as u64 * h as u64,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut enc = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("shisen readback"),
+            });
+        enc.copy_texture_to_buffer(
+            target.color.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded),
+                    rows_per_image: None,
+                },
+            },
+            wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+        );
+        self.queue.submit([enc.finish()]);
+        let slice = buffer.slice(..);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        rx.recv()
+            .map_err(|e| RenderError::Readback(e.to_string()))?
+            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        let data = slice
+            .get_mapped_range()
+            .map_err(|e| RenderError::Readback(e.to_string()))?;
+        let mut pixels = Vec::with_capacity((row * h) as usize);
+        for r in data.chunks(padded as usize) {
+            pixels.extend_from_slice(&r[..row as usize]);
+        }
+        drop(data);
+        buffer.unmap();
+        image::RgbaImage::from_raw(w, h, pixels)
+            .ok_or_else(|| RenderError::Readback("short image".into()))
+    }
+}

@@ -1,0 +1,128 @@
+//! Rendering: the VH (body segments, the deforming face, eyes with sclera,
+//! iris and pupil), your gloves and head, props and the floor, lit by a key
+//! and a fill light, with optional overlays (gaze rays, fields of view,
+//! saliency labels, joint frames).
+//!
+//! [`Frame::build`] turns a [`Sim`] into a CPU-side description; the wgpu
+//! [`Renderer`] draws it into its own texture. [`Headless`] owns a device
+//! without a window (on a machine with no GPU, Mesa's lavapipe) for
+//! `shisen render`, the tests and the bench; the window shares its eframe
+//! device with the same renderer.
+
+mod camera;
+mod frame;
+pub mod geometry;
+mod gpu;
+
+pub use camera::{Camera, View};
+pub use frame::{Draw, Frame, Label, LineVertex, Material, MeshKey, Overlays, face_offset};
+pub use gpu::{COLOR_FORMAT, COLOR_FORMAT_UNORM, Renderer};
+
+use std::path::Path;
+
+use crate::sim::Sim;
+
+/// Rendering errors.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// No wgpu adapter (no GPU and no software Vulkan/GL driver).
+    #[error(
+        "no graphics adapter: {0} (on a machine without a GPU install Mesa's \
+         lavapipe: apt-get install mesa-vulkan-drivers libvulkan1)"
+    )]
+    NoAdapter(String),
+    /// The adapter refused to create a device.
+    #[error("cannot create a device: {0}")]
+    Device(#[from] wgpu::RequestDeviceError),
+    /// Reading the picture back failed.
+    #[error("reading the picture back failed: {0}")]
+    Readback(String),
+    /// Read-back was asked for before anything was rendered.
+    #[error("nothing rendered yet")]
+    NothingRendered,
+    /// Writing the PNG failed.
+    #[error("cannot write {path}: {source}")]
+    Write {
+        /// Output path.
+        path: String,
+        /// Cause.
+        source: image::ImageError,
+    },
+}
+
+/// A device with no window, and a renderer on it.
+pub struct Headless {
+    /// The adapter's description (name, backend, device type).
+    pub info: wgpu::AdapterInfo,
+    /// The renderer.
+    pub renderer: Renderer,
+}
+
+impl Headless {
+    /// Open the first adapter wgpu finds with no surface: Vulkan (Metal,
+    /// DX12) first, then GL, or what `WGPU_BACKEND` names. Trying Vulkan
+    /// alone first keeps GL's EGL probing (and its noise) out of the usual case.
+    pub fn new() -> Result<Headless, RenderError> {
+        let from_env = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+        let tries = if std::env::var_os("WGPU_BACKEND").is_some() {
+            vec![from_env.backends]
+        } else {
+            vec![wgpu::Backends::PRIMARY, wgpu::Backends::all()]
+        };
+        let mut last_error = String::from("no backend tried");
+        let mut found = None;
+        for backends in tries {
+            let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+            desc.backends = backends;
+            let instance = wgpu::Instance::new(desc);
+            match pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                ..Default::default()
+            })) {
+                Ok(a) => {
+                    found = Some(a);
+                    break;
+                }
+                Err(e) => last_error = e.to_string(),
+            }
+        }
+        let adapter = found.ok_or(RenderError::NoAdapter(last_error))?;
+        let (device, queue) =
+            pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+                label: Some("shisen headless"),
+                required_limits:
+                    wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+                ..Default::default()
+            }))?;
+        let info = adapter.get_info();
+        tracing::info!(adapter = %info.name, backend = ?info.backend, "headless renderer");
+        Ok(Headless {
+            renderer: Renderer::new(&adapter, &device, &queue),
+            info,
+        })
+    }
+
+    /// Render the current state of `sim` from `view` at `size` pixels and
+    /// read the picture back.
+    pub fn snapshot(
+        &mut self,
+        sim: &Sim,
+        view: View,
+        overlays: Overlays,
+        size: (u32, u32),
+    ) -> Result<image::RgbaImage, RenderError> {
+        let frame = Frame::build(sim, view, overlays, size.0 as f32 / size.1 as f32);
+        self.renderer.render(&frame, &sim.face.mesh.triangles, size);
+        self.renderer.read_rgba()
+    }
+}
+
+/// Write an image as PNG.
+pub fn write_png(image: &image::RgbaImage, path: &Path) -> Result<(), RenderError> {
+    image
+        .save_with_format(path, image::ImageFormat::Png)
+        .map_err(|source| RenderError::Write {
+            path: path.display().to_string(),
+            source,
+        })
+}

@@ -1,0 +1,114 @@
+// Lit meshes (key + fill + ambient, Lambert + Blinn-Phong specular), a
+// procedural eyeball (sclera, iris, pupil about the local +Z pole), a
+// checkered floor, and unlit overlay lines.
+
+struct Globals {
+    view_proj: mat4x4<f32>,
+    camera: vec4<f32>,
+    key_dir: vec4<f32>,
+    fill_dir: vec4<f32>,
+};
+
+struct Instance {
+    model: mat4x4<f32>,
+    // Inverse transpose of the model's upper 3x3, in a mat4 for alignment.
+    normal: mat4x4<f32>,
+    color: vec4<f32>,
+    // x: material (0 plain, 1 eye, 2 floor).
+    params: vec4<f32>,
+};
+
+@group(0) @binding(0) var<uniform> g: Globals;
+@group(1) @binding(0) var<uniform> inst: Instance;
+
+struct VOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) local: vec3<f32>,
+};
+
+@vertex
+fn vs_mesh(@location(0) pos: vec3<f32>, @location(1) normal: vec3<f32>) -> VOut {
+    var o: VOut;
+    let w = inst.model * vec4<f32>(pos, 1.0);
+    o.clip = g.view_proj * w;
+    o.world = w.xyz;
+    o.normal = (inst.normal * vec4<f32>(normal, 0.0)).xyz;
+    o.local = pos;
+    return o;
+}
+
+// Eye: angular radii of the pupil and the iris seen from the eyeball
+// centre (a 2 mm pupil and 6 mm iris on an 11 mm eyeball, the pupil
+// enlarged to about 3 mm to stay visible at a distance).
+const PUPIL_COS: f32 = 0.966; // cos 15 deg
+const IRIS_COS: f32 = 0.848;  // cos 32 deg
+const LIMBUS_COS: f32 = 0.866; // cos 30 deg
+
+fn eye_colour(local: vec3<f32>) -> vec3<f32> {
+    let d = normalize(local);
+    let c = d.z;
+    if (c > PUPIL_COS) {
+        return vec3<f32>(0.005, 0.005, 0.008);
+    }
+    if (c > LIMBUS_COS) {
+        // Radial streaks of the iris stroma.
+        let a = atan2(d.y, d.x);
+        let streak = 0.85 + 0.15 * sin(a * 23.0);
+        let t = (c - LIMBUS_COS) / (PUPIL_COS - LIMBUS_COS);
+        return mix(vec3<f32>(0.10, 0.16, 0.22), vec3<f32>(0.22, 0.38, 0.52), t) * streak;
+    }
+    if (c > IRIS_COS) {
+        return vec3<f32>(0.05, 0.07, 0.10); // limbal ring
+    }
+    return vec3<f32>(0.92, 0.90, 0.86);
+}
+
+@fragment
+fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
+    let view_dir = normalize(g.camera.xyz - v.world);
+    var n = normalize(v.normal);
+    // Two-sided: face the normal toward the viewer.
+    if (dot(n, view_dir) < 0.0) {
+        n = -n;
+    }
+    var base = inst.color.rgb;
+    var shine = 0.25;
+    let material = u32(inst.params.x + 0.5);
+    if (material == 1u) {
+        base = eye_colour(v.local);
+        shine = 0.8;
+    } else if (material == 2u) {
+        let cell = floor(v.world.x * 2.0) + floor(v.world.z * 2.0);
+        let checker = cell - 2.0 * floor(cell * 0.5);
+        base = mix(vec3<f32>(0.34, 0.34, 0.36), vec3<f32>(0.42, 0.42, 0.44), checker);
+        shine = 0.05;
+    }
+    let key = normalize(-g.key_dir.xyz);
+    let fill = normalize(-g.fill_dir.xyz);
+    let diffuse = 0.85 * max(dot(n, key), 0.0) + 0.35 * max(dot(n, fill), 0.0);
+    let ambient = 0.22;
+    let h = normalize(key + view_dir);
+    let spec = shine * pow(max(dot(n, h), 0.0), 40.0);
+    let colour = base * (ambient + diffuse) + vec3<f32>(spec);
+    return vec4<f32>(colour, 1.0);
+}
+
+struct LineOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) color: vec4<f32>,
+};
+
+@vertex
+fn vs_line(@location(0) pos: vec3<f32>, @location(1) color: vec4<f32>) -> LineOut {
+    var o: LineOut;
+    o.clip = g.view_proj * vec4<f32>(pos, 1.0);
+    o.color = color;
+    return o;
+}
+
+@fragment
+fn fs_line(v: LineOut) -> @location(0) vec4<f32> {
+    return v.color;
+}

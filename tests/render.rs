@@ -1,0 +1,164 @@
+//! Offscreen rendering on whatever adapter wgpu finds (lavapipe on a
+//! machine without a GPU): the face is in frame, both eyes show a pupil,
+//! and the pupils move in the picture when the VH's gaze moves.
+//!
+//! Without an adapter the tests skip with a message, unless
+//! `SHISEN_REQUIRE_GPU=1` (set by .ci/run after installing lavapipe), where
+//! a missing adapter fails.
+
+use std::path::Path;
+
+use glam::Vec2;
+use shisen::body::seg;
+use shisen::render::{Camera, Headless, Overlays, View};
+use shisen::scene::LoadedScene;
+use shisen::sim::{DT, Sim};
+
+const SIZE: (u32, u32) = (800, 800);
+
+fn gpu() -> Option<Headless> {
+    match Headless::new() {
+        Ok(h) => Some(h),
+        Err(e) if std::env::var("SHISEN_REQUIRE_GPU").as_deref() == Ok("1") => {
+            panic!("SHISEN_REQUIRE_GPU=1 but {e}")
+        }
+        Err(e) => {
+            eprintln!("skipped: {e}");
+            None
+        }
+    }
+}
+
+fn run_to(sim: &mut Sim, t: f64) {
+    while sim.time() + DT / 2.0 < t {
+        sim.step();
+    }
+}
+
+/// Near-black pixels (the pupils) within `radius` px of `centre`: their centroid.
+fn pupil(img: &image::RgbaImage, centre: Vec2, radius: f32) -> Option<Vec2> {
+    let (mut sum, mut n) = (Vec2::ZERO, 0.0);
+    for (x, y, p) in img.enumerate_pixels() {
+        let at = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
+        if at.distance(centre) <= radius && p.0[..3].iter().all(|&c| c < 40) {
+            sum += at;
+            n += 1.0;
+        }
+    }
+    (n >= 3.0).then(|| sum / n)
+}
+
+struct Look {
+    /// Pupil centroid minus the projected eyeball centre, per eye, pixels.
+    offset: [Vec2; 2],
+}
+
+fn look(gpu: &mut Headless, sim: &Sim) -> Look {
+    let img = gpu
+        .snapshot(sim, View::First, Overlays::default(), SIZE)
+        .expect("render");
+    let size = Vec2::new(SIZE.0 as f32, SIZE.1 as f32);
+    let cam = Camera::of(View::First, sim, 1.0);
+    let eyes = [seg::EYE_L, seg::EYE_R].map(|e| {
+        cam.project(sim.world.pose(e).0, size)
+            .expect("eye in front of the camera")
+    });
+    // Face in frame: lit skin around and between the eyes.
+    let skin = img
+        .pixels()
+        .filter(|p| {
+            let [r, g, b, _] = p.0;
+            r > 110 && r as i32 > g as i32 + 20 && g > b
+        })
+        .count();
+    let share = skin as f64 / (SIZE.0 * SIZE.1) as f64;
+    assert!(
+        share > 0.03,
+        "face covers only {:.1} % of the picture",
+        share * 100.0
+    );
+    for e in eyes {
+        assert!(
+            e.x > 0.0 && e.y > 0.0 && e.x < size.x && e.y < size.y,
+            "eye outside the picture at {e}"
+        );
+    }
+    let offset = eyes.map(|e| {
+        pupil(&img, e, 14.0).unwrap_or_else(|| {
+            let dump = std::env::temp_dir().join("shisen-render-failure.png");
+            let _ = img.save(&dump);
+            panic!(
+                "no pupil near {e} at t = {} (picture: {})",
+                sim.time(),
+                dump.display()
+            )
+        }) - e
+    });
+    Look { offset }
+}
+
+#[test]
+fn pupils_follow_the_gaze() {
+    let Some(mut gpu) = gpu() else { return };
+    let scene = LoadedScene::load(Path::new("scenes/look_sequence.ron")).expect("scene");
+    let mut sim = Sim::new(&scene);
+    // 1.2 s: fixating 10 deg to the VH's left; 2.2 s: 20 deg right, 10 up.
+    run_to(&mut sim, 1.2);
+    let a = look(&mut gpu, &sim);
+    run_to(&mut sim, 2.2);
+    let b = look(&mut gpu, &sim);
+    for k in 0..2 {
+        let d = a.offset[k] - b.offset[k];
+        eprintln!(
+            "eye {k}: pupil offset {} px at 1.2 s, {} px at 2.2 s",
+            a.offset[k], b.offset[k]
+        );
+        // The VH's left is the picture's right (you face it).
+        assert!(
+            d.x > 4.0,
+            "eye {k}: pupil moved {d} px; expected rightward-to-leftward shift"
+        );
+        assert!(
+            d.y > 2.0,
+            "eye {k}: pupil should rise in the picture, moved {d} px"
+        );
+    }
+}
+
+#[test]
+fn rendering_is_deterministic_and_orbit_view_works() {
+    let Some(mut gpu) = gpu() else { return };
+    let mut sim = Sim::new(&LoadedScene::default_scene());
+    run_to(&mut sim, 0.3);
+    let all = Overlays {
+        gaze_rays: true,
+        fov_cones: true,
+        saliency_labels: true,
+        joint_frames: true,
+    };
+    let a = gpu.snapshot(&sim, View::ORBIT, all, (160, 120)).unwrap();
+    let b = gpu.snapshot(&sim, View::ORBIT, all, (160, 120)).unwrap();
+    assert_eq!(a.as_raw(), b.as_raw(), "same state, same pixels");
+    let distinct: std::collections::HashSet<_> = a.pixels().map(|p| p.0).collect();
+    assert!(distinct.len() > 50, "picture is nearly blank");
+}
+
+#[test]
+fn render_command_writes_a_png() {
+    if gpu().is_none() {
+        return;
+    }
+    let out = std::env::temp_dir().join(format!("shisen-render-{}.png", std::process::id()));
+    let st = std::process::Command::new(env!("CARGO_BIN_EXE_shisen"))
+        .args([
+            "render", "default", "--at", "0.2", "--size", "96x64", "--view", "orbit",
+        ])
+        .arg("--out")
+        .arg(&out)
+        .status()
+        .expect("run shisen");
+    assert!(st.success());
+    let img = image::open(&out).expect("png").to_rgba8();
+    assert_eq!(img.dimensions(), (96, 64));
+    let _ = std::fs::remove_file(out);
+}
