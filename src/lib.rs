@@ -14,6 +14,7 @@
 //! [`render`] draws it (offscreen or in the window); [`app`] is the
 //! sparring window and [`input`] your side of the bout.
 
+#[cfg(feature = "app")]
 pub mod app;
 pub mod attention;
 pub mod behaviour;
@@ -23,12 +24,14 @@ pub mod control;
 pub mod expect;
 pub mod face;
 pub mod headless;
+#[cfg(feature = "app")]
 pub mod input;
 pub mod math;
 pub mod metrics;
 pub mod mjcf;
 pub mod oculomotor;
 pub mod plot;
+#[cfg(feature = "app")]
 pub mod render;
 pub mod scene;
 pub mod script;
