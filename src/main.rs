@@ -170,7 +170,7 @@ enum Command {
         /// Image size, WxH pixels.
         #[arg(long, default_value = "1280x720", value_parser = parse_size)]
         size: (u32, u32),
-        /// Camera: `first` (from your head) or `orbit`.
+        /// Camera: `first` (from your head), `orbit` or `face` (close-up).
         #[arg(long, default_value = "first", value_parser = parse_view)]
         view: View,
         /// Overlays to draw (repeatable).
@@ -248,7 +248,7 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
 }
 
 fn parse_view(s: &str) -> Result<View, String> {
-    View::parse(s).ok_or_else(|| format!("expected first or orbit, got {s}"))
+    View::parse(s).ok_or_else(|| format!("expected first, orbit or face, got {s}"))
 }
 
 fn render(

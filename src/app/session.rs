@@ -210,7 +210,7 @@ impl Session {
             self.trace = None;
         }
         let tick = (sample.t / DT).round() as u64;
-        if tick % HISTORY_EVERY == 0 {
+        if tick.is_multiple_of(HISTORY_EVERY) {
             self.history.push_back(sample);
             while self
                 .history

@@ -26,17 +26,25 @@ pub enum View {
 impl View {
     /// The default orbit: three-quarter view from the VH's front left, a
     /// little above, far enough to see both boxers.
+    /// A close-up of the face from the front (expression renders).
+    pub const FACE: View = View::Orbit {
+        yaw: 0.0,
+        pitch: 0.05,
+        distance: 0.42,
+    };
+
     pub const ORBIT: View = View::Orbit {
         yaw: 0.9,
         pitch: 0.25,
         distance: 2.2,
     };
 
-    /// Parse `first` or `orbit`.
+    /// Parse `first`, `orbit` or `face`.
     pub fn parse(s: &str) -> Option<View> {
         match s {
             "first" => Some(View::First),
             "orbit" => Some(View::ORBIT),
+            "face" => Some(View::FACE),
             _ => None,
         }
     }

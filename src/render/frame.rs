@@ -346,7 +346,7 @@ mod tests {
         assert_eq!(eyes, 2);
         assert!(f.draws.iter().any(|d| d.mesh == MeshKey::Face));
         assert_eq!(f.face.len(), sim.face.mesh.positions.len());
-        assert!(!f.lines.is_empty() && f.lines.len() % 2 == 0);
+        assert!(!f.lines.is_empty() && f.lines.len().is_multiple_of(2));
         assert!(!f.labels.is_empty());
         assert_eq!(f, Frame::build(&sim, View::ORBIT, all, 1.5));
         let first = Frame::build(&sim, View::First, Overlays::default(), 1.5);
