@@ -558,6 +558,7 @@ impl Sim {
                 .gaze_shift(&self.face, amplitude.to_degrees(), &mut self.rng.face);
         }
         self.face_state.eye_pitch = input.eye_angles.map(|a| a.y as f32);
+        self.face_state.engaged = self.behaviour.action() != ActionKind::Idle;
         self.face_state.step(&self.face, dt, &mut self.rng.face);
         self.targets[seg::HEAD] = out.neck.joint_target();
 

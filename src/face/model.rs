@@ -56,6 +56,9 @@ pub struct FaceState {
     pub eye_pitch: [f32; 2],
     /// Offset viewer group (table 5.10).
     pub offset_group: OffsetGroup,
+    /// The VH is busy sparring (guarding or attacking): blinks come less
+    /// often ([`super::params::BlinkParams::engaged_interval_scale`]).
+    pub engaged: bool,
 }
 
 impl Default for FaceState {
@@ -69,6 +72,7 @@ impl Default for FaceState {
             blink: BlinkProcess::default(),
             eye_pitch: [0.0; 2],
             offset_group: OffsetGroup::One,
+            engaged: false,
         }
     }
 }
@@ -116,7 +120,12 @@ impl FaceState {
         let bp = &face.params.blink;
         self.transition.advance(dt);
         let allowed = !bp.neutral_only || self.emotion == Emotion::Neutral;
-        self.blink.step(bp, dt, allowed, rng);
+        let scale = if self.engaged {
+            bp.engaged_interval_scale
+        } else {
+            1.0
+        };
+        self.blink.step(bp, dt, allowed, scale, rng);
         let mut a = self
             .transition
             .value()

@@ -58,6 +58,20 @@ pub struct BlinkParams {
         deserialize_with = "crate::check::non_negative"
     )]
     pub lower_lid_follow_gain: f64,
+    /// Blink intervals are stretched by this factor while the VH is
+    /// engaged (guarding or attacking): the spontaneous blink rate drops
+    /// under visual demand (e.g. it roughly halves while reading or
+    /// driving against rest, Bentivoglio et al. 1997 for the reading
+    /// figure). Default 1.6; 1 turns the effect off.
+    #[serde(
+        default = "default_engaged_scale",
+        deserialize_with = "crate::check::positive"
+    )]
+    pub engaged_interval_scale: f64,
+}
+
+fn default_engaged_scale() -> f64 {
+    1.6
 }
 
 fn default_lower_lid_follow_gain() -> f64 {
