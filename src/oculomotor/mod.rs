@@ -308,17 +308,17 @@ impl Oculomotor {
                 eyes: eye0,
                 neck: neck0,
             } => {
-                // (T1): head and gaze tracks; eye = gaze - head, on top of
+                // (T1): head and gaze tracks (radians; the presets take
+                // degrees); eye = gaze - head, on top of
                 // where each eye started (their vergence is kept).
                 let s = t + dt - t0;
                 let smp = shift.sample(s);
-                let deg = std::f64::consts::PI / 180.0;
                 for k in 0..2 {
-                    eyes[k].angles = (eye0[k] + smp.eye * deg).clamp(-range, range);
-                    eyes[k].rates = smp.eye_rate * deg;
+                    eyes[k].angles = (eye0[k] + smp.eye).clamp(-range, range);
+                    eyes[k].rates = smp.eye_rate;
                 }
-                neck.angles = p.head.limits.clamp(*neck0 + smp.head * deg);
-                neck.rates = smp.head_rate * deg;
+                neck.angles = p.head.limits.clamp(*neck0 + smp.head);
+                neck.rates = smp.head_rate;
                 neck.accel = (neck.rates - prev.neck.rates) / dt;
                 scripted_neck = true;
                 if s >= shift.end() {
