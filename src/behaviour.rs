@@ -168,9 +168,15 @@ pub struct Behaviour {
     pub punches_thrown: u32,
 }
 
+impl Default for Behaviour {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl Behaviour {
     /// Idle, gloves in the guard stance.
-    pub fn new(_plan: &BodyPlan) -> Self {
+    pub fn new() -> Self {
         Behaviour {
             plan: Plan::Idle,
             reaches: [None, None],

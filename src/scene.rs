@@ -764,6 +764,9 @@ fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), LoadError> {
             format!("must exceed a1 ({}), got {}", p.a1, p.a2),
         ));
     }
+    if let Err(m) = scene.vh.oculomotor.pursuit.validate() {
+        return Err(err("pursuit", "vh.oculomotor.pursuit".into(), m));
+    }
     let mut names: Vec<&str> = vec!["head", "left_glove", "right_glove"];
     for (i, b) in scene.bodies.iter().enumerate() {
         if names.contains(&b.name.as_str()) || b.name.starts_with("vh_") || b.name == "point" {
@@ -899,6 +902,27 @@ mod tests {
             LoadError::Invalid { line, .. } => assert_eq!(line, 3),
             other => panic!("{other}"),
         }
+    }
+
+    #[test]
+    fn cross_field_checks_name_their_fields() {
+        let e = load("Scene(\n duration: 1.0,\n vh: (personality: (a1: 2.0, a2: 1.0)),\n)")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("t.ron:3:") && e.contains("vh.personality.a2"),
+            "{e}"
+        );
+        let e = load(
+            "Scene(\n duration: 1.0,\n vh: (oculomotor: (pursuit: (rho1: 0.5, rho2: 1.5))),\n)",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.starts_with("t.ron:3:") && e.contains("vh.oculomotor.pursuit"),
+            "{e}"
+        );
+        assert!(e.contains("rho1"), "{e}");
     }
 
     #[test]

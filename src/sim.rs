@@ -207,7 +207,7 @@ impl Sim {
         events.sort_by(|a, b| a.at.total_cmp(&b.at)); // stable: file order at equal times
         let names: Vec<String> = world.bodies.iter().map(|b| b.name.clone()).collect();
         let mut targets = vec![JointTarget::default(); plan.segments.len()];
-        let behaviour = Behaviour::new(&plan);
+        let behaviour = Behaviour::new();
         for (k, q) in arm_rotations(behaviour.glove_targets(0.0)) {
             targets[k].rotation = q;
         }
@@ -407,7 +407,7 @@ impl Sim {
         }
         self.world.reset_vh();
         self.oculomotor = Oculomotor::new(&self.scene.vh.oculomotor, &mut self.rng.oculomotor);
-        self.behaviour = Behaviour::new(&self.world.plan);
+        self.behaviour = Behaviour::new();
         for t in &mut self.targets {
             *t = JointTarget::default();
         }
@@ -689,12 +689,4 @@ fn target_id(c: &GazeChoice) -> u64 {
         h = h.rotate_left(5) ^ byte as u64;
     }
     h
-}
-
-/// Make a joint target from a rotation with zero velocity (tests, tuning).
-pub fn hold(rotation: Quat) -> JointTarget {
-    JointTarget {
-        rotation,
-        ..Default::default()
-    }
 }

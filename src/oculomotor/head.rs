@@ -124,17 +124,6 @@ impl Default for HeadParams {
 }
 
 impl HeadParams {
-    /// Cross-field check: `A2 > A1`.
-    pub fn validate(&self) -> Result<(), String> {
-        if self.attention_most <= self.attention_least {
-            return Err(format!(
-                "attention_most ({}) must exceed attention_least ({})",
-                self.attention_most, self.attention_least
-            ));
-        }
-        Ok(())
-    }
-
     /// Start rule (gaze.md 9): the gaze point is more than [`Self::start_angle`]
     /// from the face's forward axis (`gaze_from_face`, rad) AND either
     /// [`Self::eye_lead`] has passed since the eye movement began
@@ -407,16 +396,10 @@ mod tests {
         let h: HeadParams = ron::from_str("(limits: (yaw: 1.0), eye_lead: 0.04)").unwrap();
         assert_eq!(h.limits.yaw, 1.0);
         assert_eq!(h.limits.pitch_up, NeckLimits::default().pitch_up);
-        assert!(h.validate().is_ok());
         assert!(ron::from_str::<HeadParams>("(min_duration: 0.0)").is_err());
         assert!(
             ron::from_str::<HeadParams>("(attention_most: 5.0)").is_err(),
             "A2 lives in the personality"
         );
-        let bad = HeadParams {
-            attention_most: -1.0,
-            ..p()
-        };
-        assert!(bad.validate().is_err());
     }
 }

@@ -40,7 +40,9 @@ use crate::world::JointAngles;
 
 use fixation::{FixationParams, FixationState};
 use head::{HeadMove, HeadParams};
-use pursuit::{BinocularParams, BinocularState, EyeInput, head_rate_from_angular_velocity};
+use pursuit::{
+    BinocularParams, BinocularState, EyeInput, angles_to, head_rate_from_angular_velocity,
+};
 use saccade::{Saccade, SaccadeParams};
 use takagi::{GazeShift, Preset};
 
@@ -219,11 +221,6 @@ impl Oculomotor {
         self.eye_onset
     }
 
-    /// True while a saccade is being executed.
-    pub fn in_saccade(&self) -> bool {
-        matches!(self.mode, EyeMode::Saccade { .. })
-    }
-
     /// Advance one tick.
     pub fn step(
         &mut self,
@@ -236,10 +233,10 @@ impl Oculomotor {
         let head_inv = input.head_rot.inverse();
         let range = DVec2::new(p.pursuit.yaw_range, p.pursuit.pitch_range);
         // Each eye's goal: the gaze point's direction from that eye, head frame.
-        let goal = input.eye_pos.map(|c| {
-            let (y, pt) = yaw_pitch_of(head_inv * (input.point - c));
-            DVec2::new(y, pt).clamp(-range, range)
-        });
+        let point = head_inv * input.point;
+        let goal = input
+            .eye_pos
+            .map(|c| angles_to(head_inv * c, point).clamp(-range, range));
         let new_target = self.last_target != Some(input.target_id);
         self.last_target = Some(input.target_id);
         let target_rate = match self.prev_goal {

@@ -68,8 +68,6 @@ use serde::{Deserialize, Serialize};
 
 use crate::math::{dir_from_yaw_pitch, yaw_pitch_of};
 
-use super::saccade::yaw_pitch_rates;
-
 /// Static parameters of the binocular model (gaze.md section 8). The gains
 /// are Zhang & Wakamatsu's, with the 2006 implementation's values.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -191,16 +189,6 @@ impl BinocularParams {
 pub fn angles_to(centre: DVec3, point: DVec3) -> DVec2 {
     let (yaw, pitch) = yaw_pitch_of(point - centre);
     DVec2::new(yaw, pitch)
-}
-
-/// Rate of [`angles_to`] when `point` moves at `point_velocity` relative to
-/// the head frame (include `-omega x r` for a rotating head).
-pub fn angle_rates_to(centre: DVec3, point: DVec3, point_velocity: DVec3) -> DVec2 {
-    let r = point - centre;
-    let n = r.length();
-    let d = r / n;
-    let d_dot = (point_velocity - d * d.dot(point_velocity)) / n;
-    yaw_pitch_rates(d, d_dot)
 }
 
 /// Head angular velocity `omega` (head frame, rad/s) as (yaw rate, pitch
@@ -340,11 +328,6 @@ impl BinocularState {
     /// Eye angular rates of the last step (left, right), rad/s.
     pub fn rates(&self) -> (DVec2, DVec2) {
         (self.rate_l, self.rate_r)
-    }
-
-    /// Current fixation-distance estimate (m from the head-frame origin).
-    pub fn distance_estimate(&self) -> Option<f64> {
-        self.distance
     }
 
     /// Triangulates the fixation distance from both lines of sight.
