@@ -21,7 +21,7 @@ fn frame(c: &mut Criterion) {
         }
     };
     eprintln!("adapter: {} ({:?})", gpu.info.name, gpu.info.backend);
-    let mut sim = Sim::new(&LoadedScene::default_scene());
+    let mut sim = LoadedScene::default_scene().sim();
     for _ in 0..1000 {
         sim.step();
     }
@@ -51,7 +51,8 @@ fn frame(c: &mut Criterion) {
     g.bench_function("frame 1280x720, no read-back", |b| {
         b.iter(|| {
             let f = Frame::build(&sim, View::First, Overlays::default(), 16.0 / 9.0);
-            gpu.renderer.render(&f, &sim.face.mesh.triangles, SIZE);
+            gpu.renderer
+                .render(&f, &sim.model().face.mesh.triangles, SIZE);
             gpu.renderer.wait();
         })
     });

@@ -6,17 +6,17 @@ use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::DVec3;
-use shisen::attention::{Attention, AttentionParams};
-use shisen::behaviour::TopDown;
-use shisen::body::{BodyPlan, Shape};
+use shisen::agent::attention::{Attention, AttentionParams};
+use shisen::agent::behaviour::TopDown;
+use shisen::agent::vision::{VisionParams, see};
+use shisen::physics::body::{BodyPlan, Shape};
+use shisen::physics::world::{PropSpec, World};
 use shisen::scene::LoadedScene;
 use shisen::sim::{DT, Sim};
-use shisen::vision::{VisionParams, see};
-use shisen::world::{PropSpec, World};
 
 fn full_step(c: &mut Criterion) {
     let loaded = LoadedScene::default_scene();
-    let mut sim = Sim::new(&loaded);
+    let mut sim = loaded.sim();
     // Warm up into the sparring part of the scene.
     for _ in 0..1000 {
         sim.step();
@@ -24,7 +24,7 @@ fn full_step(c: &mut Criterion) {
     c.bench_function("full control step (default scene)", |b| {
         b.iter(|| {
             if sim.time() > loaded.scene.duration {
-                sim = Sim::new(&loaded);
+                sim = loaded.sim();
             }
             black_box(sim.step().t)
         })

@@ -4,11 +4,11 @@
 use std::path::Path;
 
 use glam::Vec3;
-use shisen::body::{BodyPlan, Shape};
+use shisen::agent::vision::{VisionParams, see};
+use shisen::physics::body::{BodyPlan, Shape};
+use shisen::physics::world::{PropSpec, World};
 use shisen::scene::LoadedScene;
 use shisen::sim::{DT, Sample, Sim};
-use shisen::vision::{VisionParams, see};
-use shisen::world::{PropSpec, World};
 
 fn scene(name: &str) -> LoadedScene {
     LoadedScene::load(
@@ -20,7 +20,7 @@ fn scene(name: &str) -> LoadedScene {
 }
 
 fn face_share(loaded: &LoadedScene, from: f64) -> f64 {
-    let mut sim = Sim::new(loaded);
+    let mut sim = loaded.sim();
     let (mut n, mut on) = (0, 0);
     while sim.time() < loaded.scene.duration - 1e-9 {
         let s: &Sample = sim.step();
@@ -53,7 +53,7 @@ fn strong_boxer_watches_the_face_more_than_a_weak_one() {
 fn a_hand_entering_the_field_is_noticed_quickly() {
     let loaded = scene("fov_entry.ron");
     let hand = |sim: &Sim| sim.world.body_index("hand").unwrap();
-    let mut sim = Sim::new(&loaded);
+    let mut sim = loaded.sim();
     let mut entered = None;
     let mut looked = None;
     while sim.time() < loaded.scene.duration - 1e-9 {

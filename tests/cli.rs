@@ -128,12 +128,12 @@ fn trace_has_the_documented_header() {
     assert_eq!(code, 0, "{err}");
     let text = std::fs::read_to_string(&trace).unwrap();
     let header = text.lines().next().unwrap();
-    assert_eq!(header, shisen::trace::header());
+    assert_eq!(header, shisen::tools::trace::header());
     assert_eq!(text.lines().count(), 1 + 5, "50 ticks, every 10th");
     // every column is documented in the README
     let readme =
         std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")).unwrap();
-    for col in shisen::trace::column_names() {
+    for col in shisen::tools::trace::column_names() {
         assert!(
             readme.contains(&format!("`{col}`")),
             "README does not document column `{col}`"

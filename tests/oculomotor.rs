@@ -7,12 +7,12 @@ use std::path::Path;
 
 use glam::DVec3;
 use shisen::scene::LoadedScene;
-use shisen::sim::{Sample, Sim};
+use shisen::sim::Sample;
 
 fn run(text: &str) -> Vec<Sample> {
     let loaded = LoadedScene::from_str(text, Path::new("inline.ron"), None)
         .unwrap_or_else(|e| panic!("{e}"));
-    let mut sim = Sim::new(&loaded);
+    let mut sim = loaded.sim();
     let mut out = Vec::new();
     while sim.time() < loaded.scene.duration - 1e-9 {
         out.push(sim.step().clone());
@@ -38,8 +38,8 @@ fn physical_eye_tracks_the_planned_saccade() {
             "Scene(duration: 1.0, vh: ({QUIET}), timeline: [(at: 0.2, do: LookAt(point: ({}, {}, {}), until: 1.0))])",
             p.x, p.y, p.z
         ));
-        let plan =
-            shisen::oculomotor::saccade::SaccadeProfile::plan(&Default::default(), a).duration();
+        let plan = shisen::agent::oculomotor::saccade::SaccadeProfile::plan(&Default::default(), a)
+            .duration();
         let during: Vec<f64> = window(&s, 0.2, 0.2 + plan)
             .map(|x| (x.eye_target[0] - x.eye_actual[0]).length())
             .collect();
@@ -194,7 +194,7 @@ fn head_moves_for_large_shifts_and_grows_with_attention() {
 #[test]
 fn head_onset_follows_the_eyes_for_bottom_up_targets() {
     let onsets = |loaded: &LoadedScene, from: f64| {
-        let mut sim = Sim::new(loaded);
+        let mut sim = loaded.sim();
         let mut eye = None;
         while sim.time() < loaded.scene.duration - 1e-9 {
             sim.step();
@@ -236,7 +236,7 @@ fn head_onset_follows_the_eyes_for_bottom_up_targets() {
 #[test]
 fn takagi_shift_keeps_eye_equal_gaze_minus_head() {
     use glam::DVec2;
-    use shisen::oculomotor::takagi::Preset;
+    use shisen::agent::oculomotor::takagi::Preset;
     let a = 40.0f64.to_radians();
     let s = run(&format!(
         "Scene(duration: 3.0, vh: ({QUIET}), timeline: [(at: 0.2, do: LookAt(point: ({}, 1.6745, {}), until: 3.0, style: Takagi(Dialogue)))])",

@@ -9,7 +9,7 @@
 use std::path::Path;
 
 use glam::Vec2;
-use shisen::body::seg;
+use shisen::physics::body::seg;
 use shisen::render::{Camera, Headless, Overlays, View};
 use shisen::scene::LoadedScene;
 use shisen::sim::{DT, Sim};
@@ -101,7 +101,7 @@ fn look(gpu: &mut Headless, sim: &Sim) -> Look {
 fn pupils_follow_the_gaze() {
     let Some(mut gpu) = gpu() else { return };
     let scene = LoadedScene::load(Path::new("scenes/look_sequence.ron")).expect("scene");
-    let mut sim = Sim::new(&scene);
+    let mut sim = scene.sim();
     // 1.2 s: fixating 10 deg to the VH's left; 2.2 s: 20 deg right, 10 up.
     run_to(&mut sim, 1.2);
     let a = look(&mut gpu, &sim);
@@ -128,7 +128,7 @@ fn pupils_follow_the_gaze() {
 #[test]
 fn rendering_is_deterministic_and_orbit_view_works() {
     let Some(mut gpu) = gpu() else { return };
-    let mut sim = Sim::new(&LoadedScene::default_scene());
+    let mut sim = LoadedScene::default_scene().sim();
     run_to(&mut sim, 0.3);
     let all = Overlays {
         gaze_rays: true,

@@ -10,8 +10,9 @@ use shisen::app::session::{SceneSource, Session};
 use shisen::face::tables::Emotion;
 use shisen::face::timing::{Pattern, Speed};
 use shisen::input::Intent;
-use shisen::scene::{Action, Event, LoadedScene};
-use shisen::trace::TraceWriter;
+use shisen::scene::LoadedScene;
+use shisen::sim::timeline::{Action, Event};
+use shisen::tools::trace::TraceWriter;
 
 /// A deterministic input for frame `f`.
 fn synthetic(f: u32) -> Intent {
@@ -35,14 +36,14 @@ fn a_recorded_session_replays_byte_for_byte() {
     let mut s = Session::new(LoadedScene::default_scene(), SceneSource::default_scene());
     // Tuning before the recording: the gains carry over (inlined in the
     // recording), the personality goes back to the scene's.
-    let mut gains = s.sim.gains.clone();
+    let mut gains = s.sim.params().gains.clone();
     gains.neck.kp *= 1.3;
-    s.sim.set_gains(gains.clone());
-    let mut p = s.sim.scene.vh.personality.clone();
+    s.sim.edit_params(|m| m.gains = gains.clone());
+    let mut p = s.sim.params().personality.clone();
     p.a_face = 2.5;
-    s.sim.set_personality(p);
+    s.sim.edit_params(|m| m.personality = p);
     s.start_recording();
-    assert_eq!(s.sim.gains, gains);
+    assert_eq!(s.sim.params().gains, gains);
     let mut live = TraceWriter::new(Vec::new(), 1).unwrap();
     for f in 0..150u32 {
         s.apply(&synthetic(f));
@@ -72,7 +73,7 @@ fn a_recorded_session_replays_byte_for_byte() {
     let loaded = LoadedScene::from_str(&text, Path::new("recorded.ron"), None)
         .unwrap_or_else(|e| panic!("{e}\n{text}"));
     let mut replay = Vec::new();
-    let report = shisen::headless::run(&loaded, None, Some(&mut replay), 1).unwrap();
+    let report = shisen::tools::headless::run(&loaded, None, Some(&mut replay), 1).unwrap();
     assert!(report.passed());
     assert_eq!(live.len(), replay.len(), "same number of rows");
     assert!(live == replay, "replayed trace differs from the live one");

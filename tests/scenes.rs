@@ -4,11 +4,10 @@
 
 use std::path::{Path, PathBuf};
 
-use shisen::headless;
-use shisen::metrics::step_metrics;
-use shisen::oculomotor::saccade::{SaccadeParams, SaccadeProfile};
+use shisen::agent::oculomotor::saccade::{SaccadeParams, SaccadeProfile};
 use shisen::scene::LoadedScene;
-use shisen::sim::Sim;
+use shisen::tools::headless;
+use shisen::tools::metrics::step_metrics;
 
 fn scene_files() -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
@@ -78,7 +77,7 @@ fn same_scene_and_seed_give_identical_trace_bytes() {
 fn look_sequence_eyes_and_neck_settle() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/look_sequence.ron");
     let loaded = LoadedScene::load(&path).expect("scene loads");
-    let mut sim = Sim::new(&loaded);
+    let mut sim = loaded.sim();
     let mut rows = Vec::new();
     while sim.time() < loaded.scene.duration - 1e-9 {
         let s = sim.step();

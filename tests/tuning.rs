@@ -1,9 +1,9 @@
 //! Automatic tuning reaches the objective from deliberately bad gains, for
 //! the eyes and the neck; the test prints before and after.
 
-use shisen::body::Group;
-use shisen::control::{Gains, JointGains};
-use shisen::tune::{auto_tune, initial_guess, score};
+use shisen::physics::body::Group;
+use shisen::physics::control::{Gains, JointGains};
+use shisen::tools::tune::{auto_tune, initial_guess, score};
 
 fn check(group: Group, name: &str, bad: JointGains) {
     let mut base = Gains::default();

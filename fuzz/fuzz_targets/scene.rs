@@ -14,7 +14,7 @@ fuzz_target!(|data: &[u8]| {
     if let Err(e) = shisen::scene::Scene::parse(text, file) {
         let _ = e.to_string();
     }
-    let _ = shisen::scene::parse_ron::<shisen::control::Gains>(text, file);
+    let _ = shisen::util::ron::parse_ron::<shisen::physics::control::Gains>(text, file);
     let _ = shisen::face::params::FaceParams::parse(text, file);
     let _ = shisen::face::script::parse_script(text, file);
 });

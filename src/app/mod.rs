@@ -96,7 +96,7 @@ pub fn run(opts: AppOptions) -> anyhow::Result<()> {
             let show_panels = opts.panels || !opts.open.is_empty();
             let session = Session::new(loaded, source);
             if !opts.open.is_empty() {
-                panels.open_sections(&opts.open, &session.sim.gains);
+                panels.open_sections(&opts.open, &session.sim.params().gains);
             }
             Ok(Box::new(ShisenApp {
                 session,

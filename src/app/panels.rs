@@ -5,10 +5,10 @@
 use eframe::egui::{self, RichText};
 use egui_plot::{Legend, Line, Plot, PlotPoints};
 
-use crate::body::Group;
 use crate::face::tables::{ActionUnit, Emotion};
 use crate::face::timing::{Pattern, Speed};
-use crate::scene::{Action, Event};
+use crate::physics::body::Group;
+use crate::sim::timeline::{Action, Event};
 
 use super::session::Session;
 use super::tuning::{StepResponse, step_response};
@@ -52,7 +52,7 @@ impl Default for PanelState {
 
 impl PanelState {
     /// Open these sections at start (`gains` also shows a neck step response).
-    pub fn open_sections(&mut self, sections: &[String], gains: &crate::control::Gains) {
+    pub fn open_sections(&mut self, sections: &[String], gains: &crate::physics::control::Gains) {
         self.open = sections.to_vec();
         if self.open.iter().any(|s| s == "gains") {
             self.step = Some(step_response(gains, Group::Neck));
@@ -296,11 +296,11 @@ fn attention(ui: &mut egui::Ui, s: &Session) {
         });
     }
     // The action's request carries the personality's amount for it (gaze.md 5).
-    let pers = &s.sim.scene.vh.personality;
+    let pers = &s.sim.params().personality;
     let top_down = match last.action {
-        crate::scene::ActionKind::Idle => pers.a_face,
-        crate::scene::ActionKind::Guard => pers.a_guard,
-        crate::scene::ActionKind::Attack => pers.a_attack,
+        crate::agent::behaviour::ActionKind::Idle => pers.a_face,
+        crate::agent::behaviour::ActionKind::Guard => pers.a_guard,
+        crate::agent::behaviour::ActionKind::Attack => pers.a_attack,
     };
     ui.horizontal(|ui| {
         ui.add_sized([90.0, 16.0], egui::Label::new("top-down"));
@@ -313,7 +313,7 @@ fn attention(ui: &mut egui::Ui, s: &Session) {
 }
 
 fn personality(ui: &mut egui::Ui, s: &mut Session) {
-    let mut p = s.sim.scene.vh.personality.clone();
+    let mut p = s.sim.params().personality.clone();
     let mut changed = false;
     for (label, v) in [
         ("A_face", &mut p.a_face),
@@ -330,12 +330,15 @@ fn personality(ui: &mut egui::Ui, s: &mut Session) {
         if p.a2 <= p.a1 {
             p.a2 = p.a1 + 0.01;
         }
-        s.sim.set_personality(p);
+        s.sim.edit_params(|m| m.personality = p);
     }
-    ui.add(
-        egui::Slider::new(&mut s.sim.scene.vh.behaviour.attack_rate, 0.0..=2.0)
-            .text("attack rate (1/s)"),
-    );
+    let mut rate = s.sim.params().behaviour.attack_rate;
+    if ui
+        .add(egui::Slider::new(&mut rate, 0.0..=2.0).text("attack rate (1/s)"))
+        .changed()
+    {
+        s.sim.edit_params(|m| m.behaviour.attack_rate = rate);
+    }
 }
 
 fn gains(ui: &mut egui::Ui, s: &mut Session, st: &mut PanelState) {
@@ -343,16 +346,16 @@ fn gains(ui: &mut egui::Ui, s: &mut Session, st: &mut PanelState) {
         ui.text_edit_singleline(&mut st.gains_path);
         if ui.button("Load gains").clicked() {
             let p = std::path::PathBuf::from(&st.gains_path);
-            match crate::control::Gains::load(&p) {
+            match crate::physics::control::Gains::load(&p) {
                 Ok(g) => {
-                    s.sim.set_gains(g);
+                    s.sim.edit_params(|m| m.gains = g);
                     st.say(format!("gains from {}", p.display()), false);
                 }
                 Err(e) => st.say(format!("{e}"), true),
             }
         }
     });
-    let mut g = s.sim.gains.clone();
+    let mut g = s.sim.params().gains.clone();
     let mut changed = false;
     for group in Group::ALL {
         ui.label(RichText::new(format!("{group:?}")).strong());
@@ -376,12 +379,12 @@ fn gains(ui: &mut egui::Ui, s: &mut Session, st: &mut PanelState) {
                 )
                 .changed();
             if ui.button("step response").clicked() {
-                st.step = Some(step_response(&s.sim.gains, group));
+                st.step = Some(step_response(&s.sim.params().gains, group));
             }
         });
     }
     if changed {
-        s.sim.set_gains(g);
+        s.sim.edit_params(|m| m.gains = g);
     }
     ui.label("live target (dashed) vs actual, degrees:");
     let series = |f: &dyn Fn(&crate::sim::Sample) -> f64| -> PlotPoints<'static> {

@@ -8,12 +8,13 @@ use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
-use crate::body::seg;
 use crate::input::{Intent, OpponentControl};
-use crate::scene::{Event, LoadedScene};
+use crate::physics::body::seg;
+use crate::physics::world::opp;
+use crate::scene::LoadedScene;
+use crate::sim::timeline::Event;
 use crate::sim::{DT, Sample, Sim};
-use crate::trace::TraceWriter;
-use crate::world::opp;
+use crate::tools::trace::TraceWriter;
 
 use super::record::Recorder;
 
@@ -119,7 +120,7 @@ pub struct Session {
 impl Session {
     /// A session on `loaded` (from `source`), at time 0.
     pub fn new(loaded: LoadedScene, source: SceneSource) -> Self {
-        let sim = Sim::new(&loaded);
+        let sim = loaded.sim();
         Session {
             control: OpponentControl::new(&sim.world.plan),
             sim,
@@ -143,9 +144,9 @@ impl Session {
     /// `keep_vh`, the VH's parameters as the scene file has them.
     fn reset(&mut self, keep_vh: bool) {
         let mut loaded = self.loaded.clone();
-        loaded.gains = self.sim.gains.clone();
+        loaded.gains = self.sim.params().gains.clone();
         if keep_vh {
-            loaded.scene.vh = self.sim.scene.vh.clone();
+            loaded.scene.vh.set_params(self.sim.params());
         }
         let reach = self.control.reach;
         let clock = self.clock;
@@ -238,9 +239,9 @@ impl Session {
     pub fn start_recording(&mut self) {
         self.reset(false);
         self.recorder = Some(Recorder::new(
-            &self.source.text,
+            &self.loaded.scene,
             self.loaded.scene.seed,
-            self.sim.gains.clone(),
+            self.sim.params().gains.clone(),
         ));
     }
 
@@ -249,7 +250,7 @@ impl Session {
         let Some(r) = self.recorder.take() else {
             return Ok(None);
         };
-        Ok(Some(r.scene_text(self.sim.time().max(DT))?))
+        Ok(Some(r.scene_text(self.sim.time().max(DT))))
     }
 
     /// Start writing the trace (CSV) to `path`.

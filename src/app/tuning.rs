@@ -3,10 +3,10 @@
 //! [`tune::run`] and judged by [`tune::evaluate`], the same code path as
 //! `shisen tune` and the tuning tests.
 
-use crate::body::Group;
-use crate::control::Gains;
+use crate::physics::body::Group;
+use crate::physics::control::Gains;
 use crate::sim::DT;
-use crate::tune::{self, Objective, Report, Response};
+use crate::tools::tune::{self, Objective, Report, Response};
 
 /// A measured step response.
 #[derive(Clone, Debug)]

@@ -129,7 +129,7 @@ impl Viewport {
         let frame = Frame::build(&session.sim, self.view, self.overlays, aspect);
         let started = std::time::Instant::now();
         self.renderer
-            .render(&frame, &session.sim.face.mesh.triangles, px);
+            .render(&frame, &session.sim.model().face.mesh.triangles, px);
         self.render_ms = started.elapsed().as_secs_f32() * 1e3;
         let view = self.renderer.color_view_unorm().expect("rendered");
         let id = {

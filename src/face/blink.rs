@@ -160,8 +160,8 @@ impl BlinkProcess {
     pub fn closure(&self, p: &BlinkParams) -> f64 {
         match self.blink_time {
             None => 0.0,
-            Some(t) if t < p.close_s => crate::math::min_jerk(t / p.close_s),
-            Some(t) => 1.0 - crate::math::min_jerk((t - p.close_s) / p.open_s),
+            Some(t) if t < p.close_s => crate::util::math::min_jerk(t / p.close_s),
+            Some(t) => 1.0 - crate::util::math::min_jerk((t - p.close_s) / p.open_s),
         }
     }
 }

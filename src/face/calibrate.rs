@@ -23,7 +23,7 @@ use std::path::Path;
 
 use super::params::FaceParams;
 use super::tables::{Expression, MuscleKind};
-use crate::scene::LoadError;
+use crate::util::ron::LoadError;
 
 /// Subjects' values: expression -> muscle -> one value per subject that gave one.
 pub type SubjectData = BTreeMap<Expression, BTreeMap<MuscleKind, Vec<f64>>>;
@@ -159,10 +159,7 @@ pub fn calibrate(base: &FaceParams, data: &SubjectData) -> FaceParams {
 
 /// Read a subject CSV file and calibrate `base` from it.
 pub fn calibrate_file(base: &FaceParams, path: &Path) -> Result<FaceParams, LoadError> {
-    let text = std::fs::read_to_string(path).map_err(|e| LoadError::Io {
-        file: path.display().to_string(),
-        source: e,
-    })?;
+    let text = crate::util::ron::read_text(path)?;
     Ok(calibrate(base, &parse_csv(&text, path)?))
 }
 

@@ -62,7 +62,7 @@ fn one() -> f32 {
 impl LandmarkFile {
     /// Parse a landmark file; errors name the file, line and field.
     pub fn parse(text: &str, file: &Path) -> Result<Self, FaceError> {
-        Ok(crate::scene::parse_ron(text, file)?)
+        Ok(crate::util::ron::parse_ron(text, file)?)
     }
 
     /// A landmark file giving `l` as points (metres): a template for a

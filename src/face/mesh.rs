@@ -24,12 +24,13 @@ use std::collections::HashMap;
 
 /// Head proportions used by the generator (metres; face.md 8).
 pub mod dims {
-    /// Half the interpupillary distance (61.9 mm).
-    pub const EYE_X: f32 = 0.030_95;
-    /// Eyeball radius (22 mm diameter).
-    pub const EYEBALL_R: f32 = 0.011;
+    use crate::anatomy::eye;
+    /// Half the interpupillary distance.
+    pub const EYE_X: f32 = (eye::IPD / 2.0) as f32;
+    /// Eyeball radius.
+    pub const EYEBALL_R: f32 = eye::RADIUS as f32;
     /// Top of the head above the eye centres.
-    pub const TOP_Y: f32 = 0.1255;
+    pub const TOP_Y: f32 = eye::BELOW_TOP as f32;
     /// Bottom pole (under the jaw).
     pub const BOTTOM_Y: f32 = -0.14;
     /// Nasion height.

@@ -9,7 +9,9 @@
 pub mod blink;
 pub mod calibrate;
 pub mod emotion;
+#[cfg(feature = "mesh-io")]
 pub mod exchange;
+#[cfg(feature = "mesh-io")]
 pub mod import;
 pub mod mesh;
 pub mod model;
@@ -27,7 +29,7 @@ pub use model::{Face, FaceState, deform};
 pub enum FaceError {
     /// The RON parameter file did not parse (file, line, field included).
     #[error("{0}")]
-    Parse(#[from] crate::scene::LoadError),
+    Parse(#[from] crate::util::ron::LoadError),
     /// A parameter value is out of range or inconsistent.
     #[error("invalid parameters: {0}")]
     Invalid(String),

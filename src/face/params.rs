@@ -14,10 +14,10 @@ pub const DEFAULT_RON: &str = include_str!("../../scenes/face/muscles.ron");
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Influence {
     /// Cone half-angle B in degrees.
-    #[serde(deserialize_with = "crate::check::positive")]
+    #[serde(deserialize_with = "crate::util::check::positive")]
     pub cone_deg: f64,
     /// rf / rs (> 1).
-    #[serde(deserialize_with = "crate::check::positive")]
+    #[serde(deserialize_with = "crate::util::check::positive")]
     pub rf_ratio: f64,
 }
 
@@ -25,37 +25,37 @@ pub struct Influence {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BlinkParams {
     /// AU45 upper palpebral contraction at full closure (2.9).
-    #[serde(deserialize_with = "crate::check::positive")]
+    #[serde(deserialize_with = "crate::util::check::positive")]
     pub contraction: f64,
     /// Closing time, seconds (0.080).
-    #[serde(deserialize_with = "crate::check::positive")]
+    #[serde(deserialize_with = "crate::util::check::positive")]
     pub close_s: f64,
     /// Opening time, seconds (0.120).
-    #[serde(deserialize_with = "crate::check::positive")]
+    #[serde(deserialize_with = "crate::util::check::positive")]
     pub open_s: f64,
     /// Inverse Gaussian mean mu, seconds (4.0).
-    #[serde(deserialize_with = "crate::check::positive")]
+    #[serde(deserialize_with = "crate::util::check::positive")]
     pub mean_interval_s: f64,
     /// Inverse Gaussian shape lambda, seconds (13.94).
-    #[serde(deserialize_with = "crate::check::positive")]
+    #[serde(deserialize_with = "crate::util::check::positive")]
     pub shape_s: f64,
     /// Spontaneous blinks only while the face is neutral (thesis).
     pub neutral_only: bool,
     /// Gaze shifts smaller than this never trigger a blink (degrees).
-    #[serde(deserialize_with = "crate::check::non_negative")]
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
     pub gaze_trigger_min_deg: f64,
     /// Gaze shifts at least this large always trigger a blink (degrees).
-    #[serde(deserialize_with = "crate::check::positive")]
+    #[serde(deserialize_with = "crate::util::check::positive")]
     pub gaze_trigger_max_deg: f64,
     /// Upper-lid vertical travel per unit of eyeball vertical travel
     /// (lid follows the eye's pitch).
-    #[serde(deserialize_with = "crate::check::non_negative")]
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
     pub lid_follow_gain: f64,
     /// Lower-lid vertical travel per unit of eyeball vertical travel
     /// (0.3 if absent: the lower lid follows the pitch less than the upper).
     #[serde(
         default = "default_lower_lid_follow_gain",
-        deserialize_with = "crate::check::non_negative"
+        deserialize_with = "crate::util::check::non_negative"
     )]
     pub lower_lid_follow_gain: f64,
     /// Blink intervals are stretched by this factor while the VH is
@@ -65,7 +65,7 @@ pub struct BlinkParams {
     /// figure). Default 1.6; 1 turns the effect off.
     #[serde(
         default = "default_engaged_scale",
-        deserialize_with = "crate::check::positive"
+        deserialize_with = "crate::util::check::positive"
     )]
     pub engaged_interval_scale: f64,
 }
@@ -82,10 +82,10 @@ fn default_lower_lid_follow_gain() -> f64 {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct DurationBounds {
     /// Slow bound (speed 3).
-    #[serde(deserialize_with = "crate::check::positive")]
+    #[serde(deserialize_with = "crate::util::check::positive")]
     pub upper: f64,
     /// Fast bound (speed 1).
-    #[serde(deserialize_with = "crate::check::positive")]
+    #[serde(deserialize_with = "crate::util::check::positive")]
     pub lower: f64,
 }
 
@@ -123,7 +123,7 @@ impl FaceParams {
     /// Parse and validate a muscle database file; errors name the file,
     /// line, column and field.
     pub fn parse(text: &str, file: &std::path::Path) -> Result<Self, FaceError> {
-        let p: FaceParams = crate::scene::parse_ron(text, file)?;
+        let p: FaceParams = crate::util::ron::parse_ron(text, file)?;
         p.validate()?;
         Ok(p)
     }

@@ -21,7 +21,9 @@
 
 use super::emotion::{Activation, MuscleId, N_CHANNELS, Side, channels};
 use super::mesh::{HeadMesh, Landmarks, dims, mirror};
-use super::muscle::{Jaw, LidSphincter, LinearMuscle, Sphincter, SphincterPart, lid_margin};
+use super::muscle::{
+    Jaw, LidSphincter, LinearMuscle, Sphincter, SphincterPart, jaw_rotation, lid_margin,
+};
 use super::params::FaceParams;
 use super::tables::MuscleKind;
 use glam::Vec3;
@@ -214,7 +216,6 @@ impl Rig {
         }
         let jaw = Jaw {
             pivot: Vec3::new(0.0, l.jaw_pivot.y, l.jaw_pivot.z),
-            axis: Vec3::X,
             mouth_corner: l.mouth_corner,
             ear_lobe: l.ear_lobe,
             half_mouth_width: l.mouth_corner.x,
@@ -281,13 +282,7 @@ impl Rig {
         if theta != 0.0 {
             let jf = &self.jaw_field;
             for ((&i, r), fr) in jf.index.iter().zip(&jf.offset).zip(&jf.fraction) {
-                let x = theta * fr;
-                let x2 = x * x;
-                let s = x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0)));
-                let c = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0));
-                // Rotation about +X by alpha (F7): chin down for alpha > 0.
-                let d = Vec3::new(0.0, r.y * (c - 1.0) - r.z * s, r.y * s + r.z * (c - 1.0));
-                out[i as usize] += d;
+                out[i as usize] += jaw_rotation(*r, theta * fr); // (F7)
             }
         }
         for (zone, &centre) in mesh.lid_zone.iter().zip(&self.eye_centres) {

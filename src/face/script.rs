@@ -25,7 +25,7 @@ use std::path::Path;
 
 use super::tables::Emotion;
 use super::timing::Speed;
-use crate::scene::LoadError;
+use crate::util::ron::LoadError;
 
 /// One timed emotion change of a script.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -173,10 +173,7 @@ pub fn parse_script(text: &str, file: &Path) -> Result<Vec<ScriptStep>, LoadErro
 
 /// Read and parse a script file.
 pub fn load_script(path: &Path) -> Result<Vec<ScriptStep>, LoadError> {
-    let text = std::fs::read_to_string(path).map_err(|e| LoadError::Io {
-        file: path.display().to_string(),
-        source: e,
-    })?;
+    let text = crate::util::ron::read_text(path)?;
     parse_script(&text, path)
 }
 

@@ -9,7 +9,7 @@ use eframe::egui;
 use serde::{Deserialize, Serialize};
 
 use super::{Command, PadButton, Stick, Trigger};
-use crate::scene::LoadError;
+use crate::util::ron::LoadError;
 
 /// The embedded default bindings.
 pub const DEFAULT_BINDINGS_RON: &str = include_str!("bindings.ron");
@@ -82,7 +82,7 @@ impl Default for Bindings {
 impl Bindings {
     /// Parse and check bindings text.
     pub fn parse(text: &str, file: &Path) -> Result<Bindings, BindingsError> {
-        let b: Bindings = crate::scene::parse_ron(text, file)?;
+        let b: Bindings = crate::util::ron::parse_ron(text, file)?;
         if let Some(name) = b.keys.keys().find(|k| egui::Key::from_name(k).is_none()) {
             return Err(BindingsError::UnknownKey {
                 file: file.display().to_string(),
@@ -94,10 +94,7 @@ impl Bindings {
 
     /// Read a bindings file.
     pub fn load(path: &Path) -> Result<Bindings, BindingsError> {
-        let text = std::fs::read_to_string(path).map_err(|e| LoadError::Io {
-            file: path.display().to_string(),
-            source: e,
-        })?;
+        let text = crate::util::ron::read_text(path)?;
         Self::parse(&text, path)
     }
 

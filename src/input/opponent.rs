@@ -5,9 +5,9 @@
 
 use glam::{DVec3, Vec3};
 
-use crate::body::BodyPlan;
-use crate::scene::{Action, Event, Hand, Part, PunchTarget};
-use crate::script::Track;
+use crate::physics::body::BodyPlan;
+use crate::sim::timeline::{Action, Event, Hand, Part, PunchTarget};
+use crate::sim::track::Track;
 
 /// What you want your avatar to do this frame, in world metres.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

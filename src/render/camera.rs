@@ -2,9 +2,9 @@
 
 use glam::{Mat4, Vec2, Vec3, Vec4Swizzles};
 
-use crate::body::seg;
+use crate::physics::body::seg;
+use crate::physics::world::opp;
 use crate::sim::Sim;
-use crate::world::opp;
 
 /// Which camera to render from.
 #[derive(Clone, Copy, Debug, PartialEq)]

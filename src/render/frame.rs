@@ -5,11 +5,11 @@
 use glam::{DVec3, Mat4, Quat, Vec3};
 use rapier3d::prelude::TypedShape;
 
-use crate::body::{BodyPlan, seg};
 use crate::face::mesh::compute_normals;
-use crate::math::{dir_from_yaw_pitch, yaw_pitch_of};
+use crate::physics::body::{BodyPlan, seg};
+use crate::physics::world::{Owner, opp};
 use crate::sim::Sim;
-use crate::world::{Owner, opp};
+use crate::util::math::{dir_from_yaw_pitch, yaw_pitch_of};
 
 use super::camera::{Camera, View};
 use super::geometry::Vertex;
@@ -159,7 +159,7 @@ impl Frame {
                 Owner::Vh(seg::HEAD) => continue, // the face mesh is the head
                 Owner::Vh(s) if s == seg::EYE_L || s == seg::EYE_R => {
                     let (p, q) = w.pose(i);
-                    let r = crate::body::eye::RADIUS;
+                    let r = crate::physics::body::eye::RADIUS;
                     draws.push(Draw {
                         mesh: MeshKey::Sphere,
                         model: Mat4::from_scale_rotation_translation(Vec3::splat(r), q, p),
@@ -242,7 +242,7 @@ impl Frame {
             }
         }
         if o.fov_cones {
-            let f = &sim.scene.vh.vision.field;
+            let f = &sim.params().vision.field;
             for (k, (p, q)) in eyes.iter().enumerate() {
                 // The field is a yaw/pitch rectangle about the eye's line of
                 // sight in the head frame (vision::in_field).
@@ -310,9 +310,9 @@ pub fn capsule_key(half_height: f32, radius: f32) -> MeshKey {
 
 /// The face deformed by the current face state, with recomputed normals.
 fn face_vertices(sim: &Sim) -> Vec<Vertex> {
-    let mesh = &sim.face.mesh;
+    let mesh = &sim.model().face.mesh;
     let mut pos = vec![Vec3::ZERO; mesh.positions.len()];
-    crate::face::deform(&sim.face, &sim.face_state, &mut pos);
+    crate::face::deform(&sim.model().face, &sim.face_state, &mut pos);
     let normals = compute_normals(&pos, &mesh.triangles);
     pos.iter()
         .zip(&normals)
@@ -327,7 +327,7 @@ mod tests {
 
     #[test]
     fn frame_has_every_part_and_is_deterministic() {
-        let mut sim = Sim::new(&LoadedScene::default_scene());
+        let mut sim = LoadedScene::default_scene().sim();
         for _ in 0..50 {
             sim.step();
         }
@@ -345,7 +345,7 @@ mod tests {
             .count();
         assert_eq!(eyes, 2);
         assert!(f.draws.iter().any(|d| d.mesh == MeshKey::Face));
-        assert_eq!(f.face.len(), sim.face.mesh.positions.len());
+        assert_eq!(f.face.len(), sim.model().face.mesh.positions.len());
         assert!(!f.lines.is_empty() && f.lines.len().is_multiple_of(2));
         assert!(!f.labels.is_empty());
         assert_eq!(f, Frame::build(&sim, View::ORBIT, all, 1.5));

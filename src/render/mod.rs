@@ -112,7 +112,8 @@ impl Headless {
         size: (u32, u32),
     ) -> Result<image::RgbaImage, RenderError> {
         let frame = Frame::build(sim, view, overlays, size.0 as f32 / size.1 as f32);
-        self.renderer.render(&frame, &sim.face.mesh.triangles, size);
+        self.renderer
+            .render(&frame, &sim.model().face.mesh.triangles, size);
         self.renderer.read_rgba()
     }
 }

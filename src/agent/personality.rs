@@ -1,0 +1,43 @@
+//! The VH's personality (gaze.md 5, 9): how strongly each action's
+//! top-down request pulls the gaze, and the amounts between which the head
+//! law (M8) goes from barely turning to facing the target.
+
+use serde::{Deserialize, Serialize};
+
+/// The personality amounts (gaze.md 5, 9): top-down attention per action
+/// and the head-movement law's A1, A2.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Personality {
+    /// Top-down amount while idle (look at the opponent's face).
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    pub a_face: f64,
+    /// Top-down amount of the attack target.
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    pub a_attack: f64,
+    /// Top-down amount of the guarded point.
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    pub a_guard: f64,
+    /// Attention amount at which the head moves least (M8).
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    pub a1: f64,
+    /// Attention amount at which the head moves most (M8); must exceed `a1`.
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    pub a2: f64,
+}
+
+impl Default for Personality {
+    /// The original implementation's amounts (gaze.md 11): face 1.5,
+    /// attack and guard 3.0. With A1 = 0 and A2 = 3, (M8) turns the head
+    /// fully toward attack and guard points and stops it 15 deg short of
+    /// the face.
+    fn default() -> Self {
+        Personality {
+            a_face: 1.5,
+            a_attack: 3.0,
+            a_guard: 3.0,
+            a1: 0.0,
+            a2: 3.0,
+        }
+    }
+}

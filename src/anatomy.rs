@@ -1,0 +1,32 @@
+//! Human measurements the body, the gaze laws and the face share, in one
+//! place: the eye geometry and ranges of the seed's table 1 (gaze.md 2)
+//! and the neck's range of motion (gaze.md 9, after Takagi & Takeda).
+//! Metres, kilograms, degrees.
+
+/// The eyes (gaze.md 2, table 1).
+pub mod eye {
+    /// Eyeball radius (22 mm diameter), m.
+    pub const RADIUS: f64 = 0.011;
+    /// Interpupillary distance, m.
+    pub const IPD: f64 = 0.0619;
+    /// Eye centre below the top of the head, m.
+    pub const BELOW_TOP: f64 = 0.1255;
+    /// Eyeball mass, kg.
+    pub const MASS: f64 = 0.0075;
+    /// Horizontal range of motion, +- deg.
+    pub const YAW_RANGE_DEG: f64 = 55.0;
+    /// Vertical range of motion, +- deg.
+    pub const PITCH_RANGE_DEG: f64 = 45.0;
+}
+
+/// The neck's range of motion (gaze.md 9).
+pub mod neck {
+    /// Rotation left/right, +- deg.
+    pub const YAW_DEG: f64 = 70.0;
+    /// Extension (looking up), deg.
+    pub const PITCH_UP_DEG: f64 = 50.0;
+    /// Flexion (looking down), deg, as a positive angle.
+    pub const PITCH_DOWN_DEG: f64 = 60.0;
+    /// Lateral bend, +- deg.
+    pub const ROLL_DEG: f64 = 50.0;
+}

@@ -1,0 +1,244 @@
+//! The command line: every command and option.
+
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand};
+
+use shisen::physics::body::Group;
+use shisen::render::View;
+
+/// shisen (視線): a virtual human that boxes with you and looks where a person would.
+#[derive(Parser)]
+#[command(version, about)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    /// Window: scene file to spar in (default: the embedded scene).
+    #[arg(long)]
+    pub scene: Option<PathBuf>,
+    /// Window: bindings file (default: ~/.config/shisen/bindings.ron, else built in).
+    #[arg(long)]
+    pub bindings: Option<PathBuf>,
+    /// Window: close after this many seconds (CI).
+    #[arg(long)]
+    pub exit_after: Option<f64>,
+    /// Window: save a screenshot here before closing (with --exit-after).
+    #[arg(long)]
+    pub screenshot: Option<PathBuf>,
+    /// Window: open the tuning panel at start.
+    #[arg(long)]
+    pub panels: bool,
+    /// Window: open these panel sections at start (scene, attention,
+    /// personality, gains, face; repeatable).
+    #[arg(long, value_parser = ["scene", "attention", "personality", "gains", "face"])]
+    pub open: Vec<String>,
+    /// Window: start in the orbit view.
+    #[arg(long)]
+    pub orbit: bool,
+    /// Window: gaze rays and saliency labels on at start.
+    #[arg(long)]
+    pub overlays: bool,
+    /// Print the default bindings (RON) and exit.
+    #[arg(long)]
+    pub print_bindings: bool,
+}
+
+#[derive(Subcommand)]
+pub enum Command {
+    /// Run a scene (file path, or `default` for the embedded scene).
+    Run {
+        /// Scene file, or `default`.
+        scene: String,
+        /// Run without a window (`run` never opens one; the flag is kept for scripts).
+        #[arg(long)]
+        headless: bool,
+        /// Write the trace (CSV) here.
+        #[arg(long)]
+        trace: Option<PathBuf>,
+        /// Write every Nth tick to the trace.
+        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
+        trace_every: u64,
+        /// Override the scene's seed.
+        #[arg(long)]
+        seed: Option<u64>,
+        /// Override the scene's duration, seconds.
+        #[arg(long)]
+        duration: Option<f64>,
+        /// Also plot the run (gaze, eye and head angles) to this PNG.
+        #[arg(long)]
+        plot: Option<PathBuf>,
+    },
+    /// Tune PD gains: step and trajectory experiments per joint group,
+    /// metrics table, CSV and PNG plots; `--auto` improves the gains
+    /// against the stated objective and can write a gains file.
+    Tune {
+        /// Groups to tune (default: all).
+        #[arg(long, value_enum, value_delimiter = ',')]
+        group: Vec<GroupArg>,
+        /// Start from this gains file (default: the shipped gains).
+        #[arg(long)]
+        gains: Option<PathBuf>,
+        /// Start the automatic tuning from the physically based guess
+        /// instead of the current gains.
+        #[arg(long)]
+        from_guess: bool,
+        /// Improve the gains automatically.
+        #[arg(long)]
+        auto: bool,
+        /// Write the resulting gains file here.
+        #[arg(long)]
+        write_gains: Option<PathBuf>,
+        /// Folder for CSV and PNG output.
+        #[arg(long, default_value = "tune-out")]
+        out: PathBuf,
+        /// Step size, seconds.
+        #[arg(long, default_value_t = 0.001)]
+        dt: f64,
+    },
+    /// Sweep gains (and step size) for one group in parallel on all cores,
+    /// resumable; writes CSV and a plot.
+    Sweep {
+        /// The group.
+        #[arg(long, value_enum)]
+        group: GroupArg,
+        /// Number of runs.
+        #[arg(long, default_value_t = 120)]
+        runs: usize,
+        /// A regular grid instead of seeded random samples.
+        #[arg(long)]
+        grid: bool,
+        /// Seed of the random samples.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Folder for sweep.csv and sweep.png (re-running resumes).
+        #[arg(long, default_value = "sweep-out")]
+        out: PathBuf,
+    },
+    /// Spar against a seeded random opponent for N simulated minutes,
+    /// checking invariants every tick, and print a summary.
+    Soak {
+        /// Simulated minutes.
+        #[arg(long, default_value_t = 1.0)]
+        minutes: f64,
+        /// Seed of the opponent and the VH.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+    },
+    /// Write the VH and opponent bodies as an MJCF model (for the MuJoCo
+    /// comparison in benches/mujoco_compare.py).
+    ExportMjcf {
+        /// Output XML file.
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Face tools: export the head with morph targets, calibrate the muscle
+    /// database from subject data.
+    Face {
+        #[command(subcommand)]
+        command: FaceCommand,
+    },
+    /// Plot a trace: gaze, eye and head angles against time, with the
+    /// gaze-target switches marked.
+    Plot {
+        /// Trace CSV written by `run --trace`.
+        trace: PathBuf,
+        /// Output PNG.
+        #[arg(long)]
+        out: PathBuf,
+        /// Image size, WxH.
+        #[arg(long, default_value = "1400x900", value_parser = parse_size)]
+        size: (u32, u32),
+    },
+    /// Run a scene headless to a time and render a picture of it (PNG).
+    Render {
+        /// Scene file, or `default`.
+        scene: String,
+        /// Simulation time to render, seconds.
+        #[arg(long, default_value_t = 1.0)]
+        at: f64,
+        /// Output PNG.
+        #[arg(long)]
+        out: PathBuf,
+        /// Image size, WxH pixels.
+        #[arg(long, default_value = "1280x720", value_parser = parse_size)]
+        size: (u32, u32),
+        /// Camera: `first` (from your head), `orbit` or `face` (close-up).
+        #[arg(long, default_value = "first", value_parser = parse_view)]
+        view: View,
+        /// Overlays to draw (repeatable).
+        #[arg(long, value_enum)]
+        overlay: Vec<OverlayArg>,
+    },
+}
+
+#[derive(Subcommand)]
+pub enum FaceCommand {
+    /// Export the neutral generated head to glTF (.glb) with one morph
+    /// target per muscle and ARKit-named shapes.
+    Export {
+        /// Output .glb file.
+        #[arg(long)]
+        out: PathBuf,
+        /// Mesh resolution (latitude bands).
+        #[arg(long, default_value_t = 48)]
+        rows: usize,
+    },
+    /// Turn per-subject settings (CSV: expression, subject, one column per
+    /// muscle) into a muscle database with the thesis's rule (drop values
+    /// outside mean +/- 1 SD, average the rest).
+    Calibrate {
+        /// Subject data, CSV.
+        csv: PathBuf,
+        /// Output muscle database (RON), usable as a scene's `vh.face.database`.
+        #[arg(long)]
+        out: PathBuf,
+    },
+}
+
+/// Joint groups on the command line.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum GroupArg {
+    Eye,
+    Neck,
+    Shoulder,
+    Elbow,
+}
+
+impl From<GroupArg> for Group {
+    fn from(g: GroupArg) -> Group {
+        match g {
+            GroupArg::Eye => Group::Eye,
+            GroupArg::Neck => Group::Neck,
+            GroupArg::Shoulder => Group::Shoulder,
+            GroupArg::Elbow => Group::Elbow,
+        }
+    }
+}
+
+/// Overlays selectable on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum OverlayArg {
+    /// Lines of sight and the gaze point.
+    Gaze,
+    /// Fields of view.
+    Fov,
+    /// Joint frames.
+    Frames,
+}
+
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once('x')
+        .ok_or_else(|| format!("expected WxH, got `{s}`"))?;
+    let n = |v: &str| {
+        v.parse::<u32>()
+            .ok()
+            .filter(|v| (64..=8192).contains(v))
+            .ok_or_else(|| format!("size must be 64-8192 pixels, got `{v}`"))
+    };
+    Ok((n(w)?, n(h)?))
+}
+
+pub fn parse_view(s: &str) -> Result<View, String> {
+    View::parse(s).ok_or_else(|| format!("expected first, orbit or face, got {s}"))
+}

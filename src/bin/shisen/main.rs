@@ -1,0 +1,165 @@
+//! The `shisen` command line.
+
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+use clap::Parser;
+
+use shisen::scene::LoadedScene;
+
+mod cli;
+mod face;
+mod run;
+mod tune;
+
+use cli::*;
+use face::face_cmd;
+use run::{RunArgs, render, run, soak_cmd};
+use tune::{sweep_cmd, tune_cmd};
+
+fn load(scene: &str) -> Result<LoadedScene> {
+    if scene == "default" {
+        return Ok(LoadedScene::default_scene());
+    }
+    Ok(LoadedScene::load(std::path::Path::new(scene))?)
+}
+
+fn report(r: Result<()>) -> ExitCode {
+    match r {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    tracing_subscriber::fmt()
+        .with_env_filter(
+            tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| "warn".into()),
+        )
+        .with_writer(std::io::stderr)
+        .init();
+    let cli = Cli::parse();
+    match cli.command {
+        None if cli.print_bindings => {
+            print!("{}", shisen::input::DEFAULT_BINDINGS_RON);
+            ExitCode::SUCCESS
+        }
+        None => {
+            if let Some(s) = cli.exit_after
+                && !(s.is_finite() && s >= 0.0)
+            {
+                eprintln!("error: --exit-after: must be a non-negative number of seconds");
+                return ExitCode::from(2);
+            }
+            let opts = shisen::app::AppOptions {
+                scene: cli.scene,
+                bindings: cli.bindings,
+                exit_after: cli.exit_after,
+                screenshot: cli.screenshot,
+                panels: cli.panels,
+                open: cli.open,
+                orbit: cli.orbit,
+                overlays: cli.overlays,
+            };
+            match shisen::app::run(opts) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => {
+                    eprintln!("error: {e:#}");
+                    ExitCode::from(1)
+                }
+            }
+        }
+        Some(Command::Run {
+            scene,
+            headless: _,
+            trace,
+            trace_every,
+            seed,
+            duration,
+            plot,
+        }) => match run(RunArgs {
+            scene,
+            trace,
+            every: trace_every,
+            seed,
+            duration,
+            plot,
+        }) {
+            Ok(true) => ExitCode::SUCCESS,
+            Ok(false) => ExitCode::from(1),
+            Err(e) => {
+                eprintln!("error: {e:#}");
+                ExitCode::from(2)
+            }
+        },
+        Some(Command::Tune {
+            group,
+            gains,
+            from_guess,
+            auto,
+            write_gains,
+            out,
+            dt,
+        }) => report(tune_cmd(
+            group,
+            gains,
+            from_guess,
+            auto,
+            write_gains,
+            &out,
+            dt,
+        )),
+        Some(Command::Sweep {
+            group,
+            runs,
+            grid,
+            seed,
+            out,
+        }) => report(sweep_cmd(group.into(), runs, grid, seed, &out)),
+        Some(Command::Face { command }) => report(face_cmd(command)),
+        Some(Command::ExportMjcf { out }) => report(
+            std::fs::write(
+                &out,
+                shisen::tools::mjcf::mjcf(
+                    &shisen::physics::body::BodyPlan::default(),
+                    shisen::sim::DT,
+                ),
+            )
+            .with_context(|| format!("cannot write {}", out.display())),
+        ),
+        Some(Command::Soak { minutes, seed }) => match soak_cmd(minutes, seed) {
+            Ok(true) => ExitCode::SUCCESS,
+            Ok(false) => ExitCode::from(1),
+            Err(e) => {
+                eprintln!("error: {e:#}");
+                ExitCode::from(2)
+            }
+        },
+        Some(Command::Plot { trace, out, size }) => {
+            match shisen::tools::plot::plot_trace(&trace, &out, size) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => {
+                    eprintln!("error: {e:#}");
+                    ExitCode::from(2)
+                }
+            }
+        }
+        Some(Command::Render {
+            scene,
+            at,
+            out,
+            size,
+            view,
+            overlay,
+        }) => match render(&scene, at, &out, size, view, &overlay) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {e:#}");
+                ExitCode::from(2)
+            }
+        },
+    }
+}

@@ -1,0 +1,118 @@
+//! `shisen tune`, `shisen sweep`: PD gains.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+
+use shisen::physics::body::Group;
+use shisen::physics::control::Gains;
+
+use crate::cli::*;
+
+pub fn tune_cmd(
+    groups: Vec<GroupArg>,
+    gains: Option<PathBuf>,
+    from_guess: bool,
+    auto: bool,
+    write_gains: Option<PathBuf>,
+    out: &std::path::Path,
+    dt: f64,
+) -> Result<()> {
+    use shisen::tools::tune;
+    if !(dt.is_finite() && dt > 0.0 && dt <= 0.01) {
+        anyhow::bail!("--dt: must be in (0, 0.01] s, got {dt}");
+    }
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let mut g = match &gains {
+        Some(p) => Gains::load(p)?,
+        None => Gains::default(),
+    };
+    let groups: Vec<Group> = if groups.is_empty() {
+        Group::ALL.to_vec()
+    } else {
+        groups.into_iter().map(Group::from).collect()
+    };
+    for group in groups {
+        if auto {
+            let start = if from_guess {
+                tune::initial_guess(group)
+            } else {
+                *g.group(group)
+            };
+            let history = tune::auto_tune(group, &g, start, dt, 200);
+            let (first, last) = (history[0], history[history.len() - 1]);
+            println!(
+                "{group:?}: auto-tuned in {} improvements: kp {:.4e} -> {:.4e}, kd {:.4e} -> {:.4e}, cost {:.3} -> {:.3}, objective {}",
+                history.len() - 1,
+                first.gains.kp,
+                last.gains.kp,
+                first.gains.kd,
+                last.gains.kd,
+                first.score.cost,
+                last.score.cost,
+                if last.score.meets { "met" } else { "NOT met" }
+            );
+            *g.group_mut(group) = last.gains;
+        }
+        let o = tune::Objective::for_group(group);
+        let mut runs = Vec::new();
+        println!(
+            "{group:?} (kp {:.4e}, kd {:.4e}):",
+            g.group(group).kp,
+            g.group(group).kd
+        );
+        for e in [o.trajectory, o.step] {
+            let r = tune::run(group, e, &g, dt);
+            println!("  {}", tune::evaluate(e, &r).line());
+            let name = format!(
+                "{group:?}_{}",
+                if matches!(e, tune::Experiment::Step { .. }) {
+                    "step"
+                } else {
+                    "trajectory"
+                }
+            )
+            .to_lowercase();
+            tune::write_response_csv(&out.join(format!("{name}.csv")), &r)?;
+            runs.push((e, r));
+        }
+        let png = out.join(format!("{group:?}.png").to_lowercase());
+        tune::plot_responses(&png, group, &runs)?;
+    }
+    if let Some(p) = write_gains {
+        let text = ron::ser::to_string_pretty(&g, ron::ser::PrettyConfig::default())?;
+        std::fs::write(&p, format!("// Written by `shisen tune`.\n{text}\n"))
+            .with_context(|| format!("cannot write {}", p.display()))?;
+        println!("gains written to {}", p.display());
+    }
+    println!("CSV and plots in {}", out.display());
+    Ok(())
+}
+
+pub fn sweep_cmd(
+    group: Group,
+    runs: usize,
+    grid: bool,
+    seed: u64,
+    out: &std::path::Path,
+) -> Result<()> {
+    use shisen::tools::tune;
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let points = tune::sweep_points(group, runs, grid, seed);
+    let rows = tune::sweep(group, &points, &Gains::default(), &out.join("sweep.csv"))?;
+    let best = rows
+        .iter()
+        .filter(|r| r.1.is_finite())
+        .min_by(|a, b| a.1.total_cmp(&b.1));
+    let meets = rows.iter().filter(|r| r.2).count();
+    println!("{} runs, {meets} meet the objective", rows.len());
+    if let Some((p, c, _)) = best {
+        println!(
+            "best: kp {:.4e}, kd {:.4e}, dt {} s, cost {c:.3}",
+            p.kp, p.kd, p.dt
+        );
+    }
+    tune::plot_sweep(&out.join("sweep.png"), group, &rows)?;
+    println!("CSV and plot in {}", out.display());
+    Ok(())
+}

@@ -1,0 +1,564 @@
+//! The physics world: rapier bodies and joints built from a [`BodyPlan`],
+//! joint read-out in yaw/pitch/roll, and application of the PD torques.
+//!
+//! The world owns no behaviour; each tick the simulation hands it one
+//! [`JointTarget`] per controlled segment and the kinematic poses of the
+//! opponent and props, then calls [`World::step`].
+
+use glam::{DQuat, DVec3, Mat3, Quat, Vec3};
+use rapier3d::prelude::*;
+
+use crate::agent::vision::{BodyState, Scenery};
+use crate::physics::body::{BodyPlan, Group, HARD_STOP_MARGIN_DEG, JointKind, Shape, seg};
+use crate::physics::control::{Gains, JointState, JointTarget, pd_torque};
+use crate::util::math::JointAngles;
+
+/// Who a body belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Owner {
+    /// A segment of the virtual human (index into the plan).
+    Vh(usize),
+    /// The opponent avatar (head, left glove, right glove).
+    Opponent,
+    /// A scene prop.
+    Prop,
+}
+
+/// A named body in the world, as vision and the trace know it.
+#[derive(Clone, Debug)]
+pub struct BodyInfo {
+    /// Unique name ("head", "left_glove", "vh_head", "ball", ...).
+    pub name: String,
+    /// rapier handle.
+    pub handle: RigidBodyHandle,
+    /// Its collider.
+    pub collider: ColliderHandle,
+    /// Owner.
+    pub owner: Owner,
+    /// Moved exactly by script (kinematic) rather than by forces.
+    pub kinematic: bool,
+}
+
+/// Index of the opponent's parts in [`World::opponent`].
+#[allow(missing_docs)]
+pub mod opp {
+    pub const HEAD: usize = 0;
+    pub const LEFT_GLOVE: usize = 1;
+    pub const RIGHT_GLOVE: usize = 2;
+    pub const NAMES: [&str; 3] = ["head", "left_glove", "right_glove"];
+}
+
+/// Masses of the opponent's head and gloves (a glove carries the effective
+/// mass of the arm behind it), kg.
+pub const OPPONENT_MASS: [f32; 3] = [5.0, 1.5, 1.5];
+/// Drive of the opponent's parts, per kg: natural frequency 40 rad/s,
+/// critically damped (k = w^2, c = 2 w). A free glove tracks a 0.2 s
+/// punch closely; a blocked one pushes with at most about k x.
+const DRIVE_STIFFNESS: f32 = 1600.0;
+const DRIVE_DAMPING: f32 = 80.0;
+
+/// Collision group of the VH (it does not collide with itself).
+const VH_GROUP: Group32 = Group32::GROUP_1;
+type Group32 = rapier3d::geometry::Group;
+
+/// The physics world and its bookkeeping.
+pub struct World {
+    /// rapier state (public for queries; mutate through [`World`] methods).
+    pub phys: PhysicsWorld,
+    /// The static description it was built from.
+    pub plan: BodyPlan,
+    /// Fixed step, seconds.
+    pub dt: f64,
+    /// Every named body; VH segments first, in plan order.
+    pub bodies: Vec<BodyInfo>,
+    /// Body index of each opponent part (head, left glove, right glove).
+    pub opponent: [usize; 3],
+    /// Pivot of each segment in its parent's local frame.
+    anchor_parent: Vec<Vec3>,
+    /// Segments of each segment's subtree (itself included).
+    subtree: Vec<Vec<usize>>,
+}
+
+/// A scene prop to add to the world.
+#[derive(Clone, Debug)]
+pub struct PropSpec {
+    /// Unique name.
+    pub name: String,
+    /// Collision shape.
+    pub shape: Shape,
+    /// Initial position, world.
+    pub position: Vec3,
+    /// Initial linear velocity (dynamic props).
+    pub velocity: Vec3,
+    /// Initial angular velocity (dynamic props).
+    pub angvel: Vec3,
+    /// Mass, kg.
+    pub mass: f32,
+    /// Moved by the script instead of by forces.
+    pub kinematic: bool,
+    /// Whether gravity acts on it (dynamic props).
+    pub gravity: bool,
+}
+
+fn collider_for(shape: Shape, axis_to: Vec3) -> ColliderBuilder {
+    let rot = Quat::from_rotation_arc(Vec3::Y, axis_to.normalize());
+    let b = match shape {
+        Shape::Ball { radius } => ColliderBuilder::ball(radius),
+        Shape::Capsule {
+            half_height,
+            radius,
+        } => ColliderBuilder::capsule_y(half_height, radius),
+        Shape::Cuboid { half } => ColliderBuilder::cuboid(half.x, half.y, half.z),
+    };
+    b.position(Pose::from_parts(Vec3::ZERO, rot))
+}
+
+impl World {
+    /// Build the world at rest from a plan, stepping at `dt` seconds.
+    pub fn new(plan: BodyPlan, dt: f64) -> Self {
+        let mut phys = PhysicsWorld::new();
+        phys.integration_parameters.dt = dt as f32;
+        let mut bodies = Vec::new();
+        let mut handles = Vec::new();
+        let vh_groups =
+            InteractionGroups::new(VH_GROUP, Group32::ALL ^ VH_GROUP, Default::default());
+        for (i, s) in plan.segments.iter().enumerate() {
+            let rb = if s.parent.is_none() {
+                RigidBodyBuilder::fixed()
+            } else {
+                RigidBodyBuilder::dynamic()
+            }
+            .translation(s.centre)
+            .can_sleep(false)
+            .user_data(i as u128);
+            let h = phys.insert_body(rb);
+            let mut cb = collider_for(s.shape, s.axis_to).collision_groups(vh_groups);
+            if s.mass > 0.0 {
+                cb = cb.mass(s.mass);
+            }
+            if i == seg::EYE_L || i == seg::EYE_R {
+                // Eyes sit inside the head: they carry mass but touch nothing.
+                cb = cb.collision_groups(InteractionGroups::none());
+            }
+            let c = phys.insert_collider(cb.user_data(i as u128), Some(h));
+            handles.push(h);
+            bodies.push(BodyInfo {
+                name: s.name.to_string(),
+                handle: h,
+                collider: c,
+                owner: Owner::Vh(i),
+                kinematic: false,
+            });
+        }
+        let mut anchor_parent = vec![Vec3::ZERO; plan.segments.len()];
+        for (i, s) in plan.segments.iter().enumerate() {
+            let Some(p) = s.parent else { continue };
+            let a1 = s.pivot - plan.segments[p].centre;
+            let a2 = s.pivot - s.centre;
+            anchor_parent[i] = a1;
+            let joint: GenericJoint = match s.joint {
+                JointKind::Ball => {
+                    let mut j = SphericalJointBuilder::new()
+                        .local_anchor1(a1)
+                        .local_anchor2(a2)
+                        .contacts_enabled(false);
+                    if matches!(s.group, Some(Group::Eye | Group::Neck))
+                        && let Some(l) = s.limits
+                    {
+                        // rapier's per-axis limit is 2 asin(q.imag[axis]); close to
+                        // our angles, so a margin keeps it a pure safety stop.
+                        let m = HARD_STOP_MARGIN_DEG * 2.0;
+                        let r = |v: [f32; 2]| [(v[0] - m).to_radians(), (v[1] + m).to_radians()];
+                        let pitch = r(l.pitch);
+                        j = j
+                            .limits(JointAxis::AngY, r(l.yaw))
+                            .limits(JointAxis::AngX, [-pitch[1], -pitch[0]])
+                            .limits(JointAxis::AngZ, r(l.roll));
+                    }
+                    j.build().into()
+                }
+                JointKind::Hinge { axis } => RevoluteJointBuilder::new(axis)
+                    .local_anchor1(a1)
+                    .local_anchor2(a2)
+                    .contacts_enabled(false)
+                    .build()
+                    .into(),
+                JointKind::Weld => FixedJointBuilder::new()
+                    .local_anchor1(a1)
+                    .local_anchor2(a2)
+                    .contacts_enabled(false)
+                    .build()
+                    .into(),
+                JointKind::Root => continue,
+            };
+            phys.insert_impulse_joint(handles[p], handles[i], joint);
+        }
+        let n = plan.segments.len();
+        let mut subtree = vec![Vec::new(); n];
+        for i in 0..n {
+            let mut j = Some(i);
+            while let Some(k) = j {
+                subtree[k].push(i);
+                j = plan.segments[k].parent;
+            }
+        }
+        let opp_groups = InteractionGroups::all();
+        let mut opponent = [0; 3];
+        let positions = [
+            plan.opponent_head,
+            plan.opponent_gloves[0],
+            plan.opponent_gloves[1],
+        ];
+        let radii = [
+            plan.opponent_head_radius,
+            plan.glove_radius,
+            plan.glove_radius,
+        ];
+        for k in 0..3 {
+            let idx = bodies.len();
+            // Dynamic, driven by a spring-damper toward the scripted or live
+            // target (see `drive`): finite mass and strength, so a punch
+            // that lands transfers momentum, and an arm caught between a
+            // glove and the torso is pushed, not crushed.
+            let h = phys.insert_body(
+                RigidBodyBuilder::dynamic()
+                    .translation(positions[k])
+                    .gravity_scale(0.0)
+                    .lock_rotations()
+                    .can_sleep(false)
+                    .user_data(idx as u128),
+            );
+            let c = phys.insert_collider(
+                ColliderBuilder::ball(radii[k])
+                    .mass(OPPONENT_MASS[k])
+                    .collision_groups(opp_groups)
+                    .user_data(idx as u128),
+                Some(h),
+            );
+            opponent[k] = idx;
+            bodies.push(BodyInfo {
+                name: opp::NAMES[k].to_string(),
+                handle: h,
+                collider: c,
+                owner: Owner::Opponent,
+                kinematic: false,
+            });
+        }
+        World {
+            phys,
+            plan,
+            dt,
+            bodies,
+            opponent,
+            anchor_parent,
+            subtree,
+        }
+    }
+
+    /// Add a prop; returns its body index.
+    pub fn add_prop(&mut self, p: &PropSpec) -> usize {
+        let idx = self.bodies.len();
+        let rb = if p.kinematic {
+            RigidBodyBuilder::kinematic_position_based()
+        } else {
+            RigidBodyBuilder::dynamic()
+                .linvel(p.velocity)
+                .angvel(p.angvel)
+                .gravity_scale(if p.gravity { 1.0 } else { 0.0 })
+                .can_sleep(false)
+        }
+        .translation(p.position)
+        .user_data(idx as u128);
+        let h = self.phys.insert_body(rb);
+        let c = self.phys.insert_collider(
+            collider_for(p.shape, Vec3::Y)
+                .mass(p.mass)
+                .user_data(idx as u128),
+            Some(h),
+        );
+        self.bodies.push(BodyInfo {
+            name: p.name.clone(),
+            handle: h,
+            collider: c,
+            owner: Owner::Prop,
+            kinematic: p.kinematic,
+        });
+        idx
+    }
+
+    /// Find a body by name.
+    pub fn body_index(&self, name: &str) -> Option<usize> {
+        self.bodies.iter().position(|b| b.name == name)
+    }
+
+    /// The rapier body of a named body index.
+    pub fn rb(&self, body: usize) -> &RigidBody {
+        &self.phys.bodies[self.bodies[body].handle]
+    }
+
+    /// The rapier body of a VH segment.
+    pub fn seg(&self, s: usize) -> &RigidBody {
+        self.rb(s)
+    }
+
+    /// World pose of a body: (translation, rotation).
+    pub fn pose(&self, body: usize) -> (Vec3, Quat) {
+        let rb = self.rb(body);
+        (rb.translation(), *rb.rotation())
+    }
+
+    /// Rotation of a segment relative to its parent (identity at rest).
+    pub fn joint_rotation(&self, s: usize) -> Quat {
+        let p = self.plan.segments[s].parent.expect("joint has a parent");
+        self.seg(p).rotation().inverse() * *self.seg(s).rotation()
+    }
+
+    /// Angles of a segment's joint.
+    pub fn joint_angles(&self, s: usize) -> JointAngles {
+        JointAngles::from_quat(self.joint_rotation(s))
+    }
+
+    /// Child-minus-parent angular velocity in the parent's frame.
+    pub fn joint_angvel(&self, s: usize) -> Vec3 {
+        let p = self.plan.segments[s].parent.expect("joint has a parent");
+        let pr = self.seg(p);
+        pr.rotation().inverse() * (self.seg(s).angvel() - pr.angvel())
+    }
+
+    /// World position of a segment's pivot.
+    pub fn pivot(&self, s: usize) -> Vec3 {
+        let p = self.plan.segments[s].parent.expect("joint has a parent");
+        self.seg(p)
+            .position()
+            .transform_point(self.anchor_parent[s])
+    }
+
+    /// Inertia tensor of segment `s`'s subtree about `point`, world frame.
+    pub fn subtree_inertia(&self, s: usize, point: Vec3) -> Mat3 {
+        let mut total = Mat3::ZERO;
+        for &b in &self.subtree[s] {
+            let rb = self.seg(b);
+            let mp = rb.mass_properties().local_mprops;
+            let r = Mat3::from_quat(*rb.rotation());
+            let i_local = mp.reconstruct_inertia_matrix();
+            let d = rb.center_of_mass() - point;
+            let m = rb.mass();
+            let parallel = m
+                * (Mat3::from_diagonal(Vec3::splat(d.length_squared()))
+                    - Mat3::from_cols(d * d.x, d * d.y, d * d.z));
+            total += r * i_local * r.transpose() + parallel;
+        }
+        total
+    }
+
+    /// Torque that holds segment `s`'s subtree against gravity about its pivot.
+    pub fn gravity_torque(&self, s: usize) -> Vec3 {
+        let pivot = self.pivot(s);
+        let g = self.phys.gravity;
+        let mut tau = Vec3::ZERO;
+        for &b in &self.subtree[s] {
+            let rb = self.seg(b);
+            tau -= (rb.center_of_mass() - pivot).cross(g * rb.mass());
+        }
+        tau
+    }
+
+    /// Apply one tick of PD torques (as impulses over `dt`) to every
+    /// controlled joint. `targets` is indexed by segment.
+    pub fn apply_control(&mut self, gains: &Gains, targets: &[JointTarget]) {
+        let dt = self.dt as f32;
+        let mut impulses = Vec::with_capacity(self.plan.segments.len());
+        for (s, segm) in self.plan.segments.iter().enumerate() {
+            let (Some(p), Some(group)) = (segm.parent, segm.group) else {
+                continue;
+            };
+            let pivot = self.pivot(s);
+            let state = JointState {
+                parent_rot: *self.seg(p).rotation(),
+                child_rot: *self.seg(s).rotation(),
+                rel_angvel: self.seg(s).angvel() - self.seg(p).angvel(),
+                inertia: self.subtree_inertia(s, pivot),
+            };
+            let mut tau = pd_torque(gains.group(group), &targets[s], &state, dt);
+            if gains.gravity_compensation {
+                tau += self.gravity_torque(s);
+            }
+            impulses.push((p, s, tau * dt));
+        }
+        for (p, s, imp) in impulses {
+            let hs = self.bodies[s].handle;
+            self.phys.bodies[hs].apply_torque_impulse(imp, true);
+            let hp = self.bodies[p].handle;
+            if self.phys.bodies[hp].is_dynamic() {
+                self.phys.bodies[hp].apply_torque_impulse(-imp, true);
+            }
+        }
+    }
+
+    /// Move a scripted body toward `position` (with the target's velocity
+    /// and acceleration): kinematic props go exactly there at the end of
+    /// the next step; the opponent's dynamic parts are pulled by a
+    /// spring-damper with feed-forward, `F = m a + c (v - v_b) + k (p - p_b)`,
+    /// whose stiffness bounds the force a blocked glove can push with.
+    pub fn drive(&mut self, body: usize, position: Vec3, velocity: Vec3, accel: Vec3) {
+        let h = self.bodies[body].handle;
+        let dt = self.dt as f32;
+        let rb = &mut self.phys.bodies[h];
+        if rb.is_kinematic() {
+            rb.set_next_kinematic_translation(position);
+            return;
+        }
+        let m = rb.mass();
+        let (k, c) = (DRIVE_STIFFNESS * m, DRIVE_DAMPING * m);
+        let f = m * accel + c * (velocity - rb.linvel()) + k * (position - rb.translation());
+        rb.apply_impulse(f * dt, true);
+    }
+
+    /// Advance the physics by one fixed step.
+    pub fn step(&mut self) {
+        self.phys.step();
+    }
+
+    /// True if every dynamic body's pose and velocity are finite.
+    pub fn is_finite(&self) -> bool {
+        self.phys.bodies.iter().all(|(_, rb)| {
+            rb.translation().is_finite()
+                && rb.rotation().is_finite()
+                && rb.linvel().is_finite()
+                && rb.angvel().is_finite()
+        })
+    }
+
+    /// A physics explosion, described: non-finite state (rapier
+    /// quarantined a body), or a VH segment spinning faster than
+    /// `max_angvel` rad/s (a saccade peaks near 9 rad/s; absurd gains or an
+    /// integration blow-up give thousands).
+    pub fn blow_up(&self, max_angvel: f32) -> Option<String> {
+        if !self.phys.quarantine().is_empty() || !self.is_finite() {
+            return Some("non-finite state".into());
+        }
+        self.plan.segments.iter().enumerate().find_map(|(i, s)| {
+            let w = self.seg(i).angvel().length();
+            (!w.is_finite() || w > max_angvel)
+                .then(|| format!("{} spinning at {w:.0} rad/s", s.name))
+        })
+    }
+
+    /// Put the VH back in its rest pose, at rest: every segment re-enabled
+    /// (rapier disables quarantined bodies), its pose reset, velocities and
+    /// user forces zeroed, joint warm-start impulses cleared.
+    pub fn reset_vh(&mut self) {
+        for (i, s) in self.plan.segments.iter().enumerate() {
+            let h = self.bodies[i].handle;
+            let rb = &mut self.phys.bodies[h];
+            rb.set_enabled(true);
+            rb.set_position(Pose::from_parts(s.centre, Quat::IDENTITY), true);
+            rb.set_linvel(Vec3::ZERO, true);
+            rb.set_angvel(Vec3::ZERO, true);
+            rb.reset_forces(true);
+            rb.reset_torques(true);
+        }
+        for (_, j) in self.phys.impulse_joints.iter_mut() {
+            j.impulses = Default::default();
+        }
+    }
+
+    /// Whether two bodies are touching now.
+    pub fn in_contact(&self, a: usize, b: usize) -> bool {
+        self.phys
+            .contact_pair(self.bodies[a].collider, self.bodies[b].collider)
+            .is_some_and(|p| p.has_any_active_contact())
+    }
+}
+
+/// Vision's view of the physics world: rapier bodies, eye segments and ray
+/// queries.
+impl Scenery for World {
+    fn head_rotation(&self) -> DQuat {
+        self.seg(seg::HEAD).rotation().as_dquat()
+    }
+
+    fn eye(&self, k: usize) -> (Vec3, DVec3) {
+        let rb = self.seg([seg::EYE_L, seg::EYE_R][k]);
+        (rb.translation(), (*rb.rotation() * Vec3::Z).as_dvec3())
+    }
+
+    fn body_count(&self) -> usize {
+        self.bodies.len()
+    }
+
+    fn is_own(&self, i: usize) -> bool {
+        matches!(self.bodies[i].owner, Owner::Vh(_))
+    }
+
+    fn body_state(&self, i: usize) -> BodyState {
+        let rb = self.rb(i);
+        BodyState {
+            position: rb.translation().as_dvec3(),
+            orientation: rb.rotation().as_dquat(),
+            velocity: rb.linvel().as_dvec3(),
+            angvel: rb.angvel().as_dvec3(),
+        }
+    }
+
+    fn first_hit(&self, from: Vec3, dir: DVec3, target: usize) -> bool {
+        let len = dir.length() as f32;
+        let ray = Ray::new(from, (dir / dir.length()).as_vec3());
+        let is_vh = |c: &rapier3d::prelude::Collider| {
+            matches!(
+                self.bodies.get(c.user_data as usize).map(|b| b.owner),
+                Some(Owner::Vh(_))
+            )
+        };
+        let pred =
+            |_h, c: &rapier3d::prelude::Collider| !is_vh(c) || c.user_data as usize == target;
+        let filter = QueryFilter::default().predicate(&pred);
+        match self.phys.cast_ray(&ray, len + 1.0, true, filter) {
+            Some((h, _)) => self.phys.colliders[h].user_data as usize == target,
+            None => false,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn joint_angles_round_trip() {
+        let a = JointAngles {
+            yaw: 0.4,
+            pitch: -0.3,
+            roll: 0.1,
+        };
+        let b = JointAngles::from_quat(a.to_quat());
+        assert!((a.yaw - b.yaw).abs() < 1e-6);
+        assert!((a.pitch - b.pitch).abs() < 1e-6);
+        assert!((a.roll - b.roll).abs() < 1e-6);
+        // positive pitch turns the forward axis up, positive yaw to the left (+X)
+        let f = a.to_quat() * Vec3::Z;
+        assert!(f.x > 0.0);
+        let up = JointAngles {
+            pitch: 0.3,
+            ..Default::default()
+        }
+        .to_quat()
+            * Vec3::Z;
+        assert!(up.y > 0.0);
+    }
+
+    #[test]
+    fn world_builds_at_rest() {
+        let w = World::new(BodyPlan::default(), 0.001);
+        assert_eq!(w.bodies[w.opponent[1]].name, "left_glove");
+        let a = w.joint_angles(seg::HEAD);
+        assert!(a.yaw.abs() < 1e-9 && a.pitch.abs() < 1e-9);
+        let i = w.subtree_inertia(seg::EYE_L, w.pivot(seg::EYE_L));
+        let expect = 0.4 * 0.0075 * 0.011f32 * 0.011;
+        assert!(
+            (i.x_axis.x - expect).abs() / expect < 1e-3,
+            "{}",
+            i.x_axis.x
+        );
+    }
+}

@@ -1,0 +1,121 @@
+//! The static side of a simulation, as MuJoCo separates `mjModel` from
+//! `mjData`: the body plan, the props, the face and every stage's
+//! parameters. Built once (from a scene, see [`crate::scene::LoadedScene::model`],
+//! or by hand); [`crate::sim::Sim`] holds only what evolves.
+//!
+//! Live edits (the app's sliders, the tuning panel) change [`Params`]
+//! through [`crate::sim::Sim::edit_params`], the one documented path: the
+//! new values are read from the next tick on. The rest of the model (plan,
+//! props, face, step, seed) shapes the world when the simulation is built
+//! and is fixed afterwards.
+
+use std::sync::Arc;
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+use crate::agent::attention::AttentionParams;
+use crate::agent::behaviour::BehaviourParams;
+use crate::agent::oculomotor::OculomotorParams;
+use crate::agent::personality::Personality;
+use crate::agent::vision::VisionParams;
+use crate::face::Face;
+use crate::physics::body::BodyPlan;
+use crate::physics::control::Gains;
+
+/// Every parameter a running simulation may change between ticks.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Params {
+    /// PD gains of the joint groups.
+    pub gains: Gains,
+    /// Attention amounts (top-down requests, head law's A1 and A2).
+    pub personality: Personality,
+    /// Action planner.
+    pub behaviour: BehaviourParams,
+    /// Field of view and saliency options.
+    pub vision: VisionParams,
+    /// Arbitration, habituation, minimum fixation.
+    pub attention: AttentionParams,
+    /// Saccade, pursuit and head laws.
+    pub oculomotor: OculomotorParams,
+}
+
+/// The static description of one simulation.
+#[derive(Clone, Debug)]
+pub struct Model {
+    /// Physics and control step, s.
+    pub dt: f64,
+    /// Seed of every random stream.
+    pub seed: u64,
+    /// The VH's segments and joints and the opponent's parts.
+    pub plan: BodyPlan,
+    /// Props added to the world.
+    pub props: Vec<BodySpec>,
+    /// The face (mesh, muscles, database), shared between runs.
+    pub face: Arc<Face>,
+    /// The stages' parameters (live-editable).
+    pub params: Params,
+}
+
+impl Model {
+    /// A model with the default body plan, the generated face and default
+    /// parameters at the standard step ([`crate::sim::DT`]).
+    pub fn new(face: Arc<Face>, params: Params, seed: u64) -> Model {
+        Model {
+            dt: crate::sim::DT,
+            seed,
+            plan: BodyPlan::default(),
+            props: Vec::new(),
+            face,
+            params,
+        }
+    }
+}
+
+/// Shape of a prop.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+pub enum PropShape {
+    /// Sphere.
+    Ball(#[serde(deserialize_with = "crate::util::check::positive")] f64),
+    /// Box with half extents.
+    Box(#[serde(deserialize_with = "crate::util::check::vec3")] DVec3),
+}
+
+/// A prop declared by the scene.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    /// Unique name.
+    pub name: String,
+    /// Shape.
+    pub shape: PropShape,
+    /// Initial position, world metres.
+    #[serde(deserialize_with = "crate::util::check::vec3")]
+    pub position: DVec3,
+    /// Initial velocity (dynamic props), m/s.
+    #[serde(default, deserialize_with = "crate::util::check::vec3")]
+    pub velocity: DVec3,
+    /// Initial angular velocity (dynamic props), rad/s.
+    #[serde(default, deserialize_with = "crate::util::check::vec3")]
+    pub angular_velocity: DVec3,
+    /// Mass, kg.
+    #[serde(
+        default = "default_mass",
+        deserialize_with = "crate::util::check::positive"
+    )]
+    pub mass: f64,
+    /// Scripted (moved by `Move`/`Wave`) rather than simulated.
+    #[serde(default)]
+    pub kinematic: bool,
+    /// Whether gravity acts on a dynamic prop.
+    #[serde(default = "yes")]
+    pub gravity: bool,
+}
+
+fn default_mass() -> f64 {
+    0.5
+}
+
+fn yes() -> bool {
+    true
+}

@@ -1,0 +1,369 @@
+//! The timeline: what happens to the opponent, the props and the VH's
+//! overrides at given times (scene `timeline`, live input), and how each
+//! event changes the running simulation.
+
+use std::path::PathBuf;
+
+use glam::{DVec2, DVec3};
+use serde::{Deserialize, Serialize};
+
+use super::Sim;
+use crate::agent::oculomotor::{AxisCommand, GazeShiftLaw};
+use crate::physics::body::seg;
+use crate::physics::world::opp;
+
+/// The opponent's hands.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+pub enum Hand {
+    /// The opponent's left glove ("left_glove").
+    Left,
+    /// The opponent's right glove ("right_glove").
+    Right,
+}
+
+/// A script-movable body: an opponent part or a kinematic prop.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+pub enum Part {
+    /// Opponent's head.
+    Head,
+    /// Opponent's left glove.
+    LeftGlove,
+    /// Opponent's right glove.
+    RightGlove,
+    /// A kinematic prop declared in `bodies`.
+    Body(String),
+}
+
+/// The VH's left or right (eyes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+pub enum Side {
+    /// The VH's left.
+    Left,
+    /// The VH's right.
+    Right,
+}
+
+/// Where an opponent punch is aimed.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+pub enum PunchTarget {
+    /// The VH's head (where it is when the punch starts).
+    Head,
+    /// The VH's torso.
+    Body,
+    /// A world point.
+    Point(#[serde(deserialize_with = "crate::util::check::vec3")] DVec3),
+}
+
+/// Something that happens at a time in the scene.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+pub enum Action {
+    /// Move a part to a point along a minimum-jerk path.
+    Move {
+        /// What moves.
+        part: Part,
+        /// Destination, world metres.
+        #[serde(deserialize_with = "crate::util::check::vec3")]
+        to: DVec3,
+        /// Duration, seconds.
+        #[serde(deserialize_with = "crate::util::check::positive")]
+        duration: f64,
+    },
+    /// Throw a punch at the VH and bring the glove back.
+    Punch {
+        /// Which glove.
+        hand: Hand,
+        /// Aim.
+        target: PunchTarget,
+        /// Peak glove speed, m/s.
+        #[serde(deserialize_with = "crate::util::check::positive")]
+        speed: f64,
+    },
+    /// Wave a part sinusoidally about its current position.
+    Wave {
+        /// What waves.
+        part: Part,
+        /// Peak displacement along each axis, metres.
+        #[serde(deserialize_with = "crate::util::check::vec3")]
+        amplitude: DVec3,
+        /// Frequency, Hz.
+        #[serde(deserialize_with = "crate::util::check::positive")]
+        frequency: f64,
+        /// Duration, seconds.
+        #[serde(deserialize_with = "crate::util::check::positive")]
+        duration: f64,
+    },
+    /// Change the facial expression (face.md 7): from the current values to
+    /// `emotion` at `intensity`, over the table 5.9/5.10 duration at `speed`.
+    Emotion {
+        /// One of the 35 emotions of table A (`Neutral`, `Happiness`, ...).
+        emotion: crate::face::tables::Emotion,
+        /// Intensity, 0-1.
+        #[serde(
+            default = "one",
+            deserialize_with = "crate::util::check::unit_interval"
+        )]
+        intensity: f64,
+        /// `Fast`, `Typical` or `Slow` (the thesis's speeds 1, 2, 3).
+        #[serde(default)]
+        speed: crate::face::timing::Speed,
+        /// Onset/offset shape `I`..`V` (default `III`, the thesis's choice).
+        #[serde(default)]
+        pattern: crate::face::timing::Pattern,
+    },
+    /// Play a script in the thesis's plain format (`emotion duration
+    /// speed` per line, face.md 9) from this time; the file is relative to
+    /// the scene and is expanded into `Emotion` events when the scene loads.
+    EmotionScript {
+        /// The script file.
+        file: PathBuf,
+    },
+    /// Override the gaze: look at a world point until a time.
+    LookAt {
+        /// The point, world metres.
+        #[serde(deserialize_with = "crate::util::check::vec3")]
+        point: DVec3,
+        /// End of the override, seconds.
+        #[serde(deserialize_with = "crate::util::check::non_negative")]
+        until: f64,
+        /// Attention amount A for the head law (M8); default the
+        /// personality's `a2` (the head faces the point).
+        #[serde(
+            default,
+            deserialize_with = "crate::util::check::opt_non_negative",
+            skip_serializing_if = "Option::is_none"
+        )]
+        amount: Option<f64>,
+        /// How to shift the gaze there (default: the scene's law).
+        #[serde(default)]
+        style: Option<crate::agent::oculomotor::GazeShiftLaw>,
+    },
+    /// Override the gaze: follow a body (by name) until a time.
+    Track {
+        /// Body name (`head`, `left_glove`, a prop...).
+        body: String,
+        /// End of the override, seconds.
+        #[serde(deserialize_with = "crate::util::check::non_negative")]
+        until: f64,
+    },
+    /// Move a part at constant angular speed on a horizontal circle about
+    /// a centre (a pursuit target).
+    Orbit {
+        /// What moves.
+        part: Part,
+        /// Centre of the circle, world metres.
+        #[serde(deserialize_with = "crate::util::check::vec3")]
+        centre: DVec3,
+        /// Angular speed about +Y (positive: toward the VH's left), deg/s.
+        #[serde(deserialize_with = "crate::util::check::finite")]
+        rate_deg: f64,
+        /// Duration, seconds.
+        #[serde(deserialize_with = "crate::util::check::positive")]
+        duration: f64,
+    },
+    /// Shut or cover one eye (`Some(Left)`, `Some(Right)`) or none (`None`).
+    Occlude {
+        /// The covered eye.
+        eye: Option<Side>,
+    },
+    /// Impose a sinusoidal neck motion (overriding the head law), e.g. to
+    /// measure the VOR: yaw and pitch amplitudes in degrees.
+    ShakeHead {
+        /// Yaw amplitude, deg.
+        #[serde(deserialize_with = "crate::util::check::non_negative")]
+        yaw_deg: f64,
+        /// Pitch amplitude, deg.
+        #[serde(default, deserialize_with = "crate::util::check::non_negative")]
+        pitch_deg: f64,
+        /// Frequency, Hz.
+        #[serde(deserialize_with = "crate::util::check::positive")]
+        frequency: f64,
+        /// Duration, s.
+        #[serde(deserialize_with = "crate::util::check::positive")]
+        duration: f64,
+    },
+}
+
+/// A timeline entry.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Event {
+    /// Start time, seconds.
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    pub at: f64,
+    /// What happens.
+    #[serde(rename = "do")]
+    pub action: Action,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+/// A scene's gaze override in force.
+#[derive(Clone, Debug)]
+pub(super) struct Override {
+    /// Body to follow, or a fixed point.
+    pub body: Option<usize>,
+    pub point: DVec3,
+    pub until: f64,
+    pub amount: Option<f64>,
+    pub style: Option<GazeShiftLaw>,
+}
+
+/// An imposed sinusoidal neck motion.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Shake {
+    amplitude: DVec2,
+    freq: f64,
+    t0: f64,
+    pub until: f64,
+}
+
+impl Shake {
+    pub fn command(&self, t: f64) -> AxisCommand {
+        let w = std::f64::consts::TAU * self.freq;
+        let ph = w * (t - self.t0);
+        AxisCommand {
+            angles: self.amplitude * ph.sin(),
+            rates: self.amplitude * (w * ph.cos()),
+            accel: self.amplitude * (-w * w * ph.sin()),
+        }
+    }
+}
+
+impl Sim {
+    fn part_body(&self, part: &Part) -> usize {
+        match part {
+            Part::Head => self.world.opponent[opp::HEAD],
+            Part::LeftGlove => self.world.opponent[opp::LEFT_GLOVE],
+            Part::RightGlove => self.world.opponent[opp::RIGHT_GLOVE],
+            Part::Body(name) => self
+                .world
+                .body_index(name)
+                .expect("scene validation checked body names"),
+        }
+    }
+
+    /// Timeline stage: run every event due by `t`, in time order.
+    pub(super) fn run_timeline(&mut self, t: f64) {
+        while self.next_event < self.events.len() && self.events[self.next_event].at <= t + 1e-12 {
+            let ev = self.events[self.next_event].clone();
+            self.next_event += 1;
+            match ev.action {
+                Action::Move { part, to, duration } => {
+                    let b = self.part_body(&part);
+                    if let Some(tr) = self.track_mut(b) {
+                        tr.reach(t, to, duration);
+                    }
+                }
+                Action::Wave {
+                    part,
+                    amplitude,
+                    frequency,
+                    duration,
+                } => {
+                    let b = self.part_body(&part);
+                    if let Some(tr) = self.track_mut(b) {
+                        tr.wave(t, amplitude, frequency, duration);
+                    }
+                }
+                Action::Punch {
+                    hand,
+                    target,
+                    speed,
+                } => {
+                    let glove_r = self.model.plan.glove_radius as f64;
+                    let (aim, radius) = match target {
+                        PunchTarget::Head => (
+                            self.world.seg(seg::HEAD).translation().as_dvec3(),
+                            0.10 + glove_r - 0.02,
+                        ),
+                        PunchTarget::Body => (
+                            self.world.seg(seg::TORSO).translation().as_dvec3()
+                                + DVec3::new(0.0, 0.1, 0.1),
+                            glove_r - 0.02,
+                        ),
+                        PunchTarget::Point(p) => (p, 0.0),
+                    };
+                    let part = match hand {
+                        Hand::Left => Part::LeftGlove,
+                        Hand::Right => Part::RightGlove,
+                    };
+                    let b = self.part_body(&part);
+                    let from = self.world.rb(b).translation().as_dvec3();
+                    // Stop where the glove's surface just meets the target's.
+                    let dir = (aim - from).normalize_or(DVec3::NEG_Z);
+                    let to = aim - dir * radius;
+                    if let Some(tr) = self.track_mut(b) {
+                        tr.punch(t, to, speed);
+                    }
+                }
+                // Expanded into `Emotion` events when the scene loaded.
+                Action::EmotionScript { .. } => {}
+                Action::LookAt {
+                    point,
+                    until,
+                    amount,
+                    style,
+                } => {
+                    self.look_at = Some(Override {
+                        body: None,
+                        point,
+                        until,
+                        amount,
+                        style,
+                    })
+                }
+                Action::Track { body, until } => {
+                    let b = self.world.body_index(&body).expect("validated body name");
+                    self.look_at = Some(Override {
+                        body: Some(b),
+                        point: DVec3::ZERO,
+                        until,
+                        amount: None,
+                        style: None,
+                    });
+                }
+                Action::Orbit {
+                    part,
+                    centre,
+                    rate_deg,
+                    duration,
+                } => {
+                    let b = self.part_body(&part);
+                    if let Some(tr) = self.track_mut(b) {
+                        tr.orbit(t, centre, rate_deg.to_radians(), duration);
+                    }
+                }
+                Action::Occlude { eye } => {
+                    self.occluded = [eye == Some(Side::Left), eye == Some(Side::Right)];
+                }
+                Action::ShakeHead {
+                    yaw_deg,
+                    pitch_deg,
+                    frequency,
+                    duration,
+                } => {
+                    self.shake = Some(Shake {
+                        amplitude: DVec2::new(yaw_deg, pitch_deg) * (std::f64::consts::PI / 180.0),
+                        freq: frequency,
+                        t0: t,
+                        until: t + duration,
+                    })
+                }
+                Action::Emotion {
+                    emotion,
+                    intensity,
+                    speed,
+                    pattern,
+                } => self.face_state.set_emotion(
+                    &self.model.face,
+                    emotion,
+                    intensity as f32,
+                    speed,
+                    pattern,
+                ),
+            }
+        }
+    }
+}

@@ -1,0 +1,62 @@
+//! Headless runs: a scene stepped to its end, traced and judged.
+
+use std::io::Write;
+
+use crate::scene::LoadedScene;
+use crate::sim::DT;
+use crate::sim::expect::{Checker, Verdict};
+use crate::tools::trace::TraceWriter;
+
+/// The outcome of a headless run.
+#[derive(Clone, Debug)]
+pub struct Report {
+    /// One verdict per expectation, in file order.
+    pub verdicts: Vec<Verdict>,
+    /// Ticks simulated.
+    pub ticks: u64,
+    /// Simulated time, s.
+    pub sim_time: f64,
+    /// Physics explosions recovered from (VH resets).
+    pub resets: u32,
+}
+
+impl Report {
+    /// True if every expectation holds.
+    pub fn passed(&self) -> bool {
+        self.verdicts.iter().all(|v| v.pass)
+    }
+}
+
+/// Run `scene` for `duration` seconds (the scene's own if `None`), writing
+/// every `every`-th sample to `trace` if given.
+pub fn run(
+    scene: &LoadedScene,
+    duration: Option<f64>,
+    trace: Option<&mut dyn Write>,
+    every: u64,
+) -> std::io::Result<Report> {
+    let duration = duration.unwrap_or(scene.scene.duration);
+    let mut sim = scene.sim();
+    let mut checker = Checker::new(&scene.scene.expect, duration);
+    let mut writer = match trace {
+        Some(w) => Some(TraceWriter::new(w, every)?),
+        None => None,
+    };
+    let ticks = (duration / DT).round() as u64;
+    for _ in 0..ticks {
+        let s = sim.step();
+        checker.push(s);
+        if let Some(w) = writer.as_mut() {
+            w.push(s)?;
+        }
+    }
+    if let Some(w) = writer {
+        w.finish()?;
+    }
+    Ok(Report {
+        verdicts: checker.verdicts(),
+        ticks,
+        sim_time: ticks as f64 * DT,
+        resets: sim.resets,
+    })
+}

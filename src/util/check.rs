@@ -1,0 +1,74 @@
+//! Validating deserialisers for numeric fields of scene and gains files.
+//!
+//! Use them as `#[serde(deserialize_with = "crate::util::check::non_negative")]` on
+//! plain `f64` fields. Because the check runs while the field itself is being
+//! read, the RON parser reports the error at that field's line and column and
+//! `serde_path_to_error` names the field: a user sees
+//! `scenes/x.ron:12:14: vh.gains.neck.kp: must be >= 0, got -3`.
+
+use serde::de::{Deserialize, Deserializer, Error};
+
+fn read<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    let v = f64::deserialize(d)?;
+    if !v.is_finite() {
+        return Err(D::Error::custom(format!(
+            "must be a finite number, got {v}"
+        )));
+    }
+    Ok(v)
+}
+
+/// Any finite number (rejects NaN and infinities).
+pub fn finite<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    read(d)
+}
+
+/// A finite number `>= 0`.
+pub fn non_negative<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    let v = read(d)?;
+    if v < 0.0 {
+        return Err(D::Error::custom(format!("must be >= 0, got {v}")));
+    }
+    Ok(v)
+}
+
+/// A finite number `> 0`.
+pub fn positive<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    let v = read(d)?;
+    if v <= 0.0 {
+        return Err(D::Error::custom(format!("must be > 0, got {v}")));
+    }
+    Ok(v)
+}
+
+/// A finite number in `[0, 1]` (fractions, probabilities, intensities).
+pub fn unit_interval<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    in_range(d, 0.0, 1.0)
+}
+
+/// A finite number in `[lo, hi]`; build field-specific checks on it.
+pub fn in_range<'de, D: Deserializer<'de>>(d: D, lo: f64, hi: f64) -> Result<f64, D::Error> {
+    let v = read(d)?;
+    if !(lo..=hi).contains(&v) {
+        return Err(D::Error::custom(format!(
+            "must be in [{lo}, {hi}], got {v}"
+        )));
+    }
+    Ok(v)
+}
+
+/// Three finite numbers `[x, y, z]` (positions, velocities), as `glam::DVec3`.
+pub fn vec3<'de, D: Deserializer<'de>>(d: D) -> Result<glam::DVec3, D::Error> {
+    let v = <[f64; 3]>::deserialize(d)?;
+    if v.iter().any(|c| !c.is_finite()) {
+        return Err(D::Error::custom(format!(
+            "components must be finite, got {v:?}"
+        )));
+    }
+    Ok(glam::DVec3::from_array(v))
+}
+
+/// An optional [`non_negative`] number (for `#[serde(default)]` fields).
+pub fn opt_non_negative<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+    non_negative(d).map(Some)
+}

@@ -1,0 +1,142 @@
+//! Small shared numerical pieces used by several laws.
+//!
+//! The minimum-jerk polynomial appears in the saccade (gaze.md M2), the
+//! head sub-target (M9) and the arm reaches (boxing.md); it lives here once.
+
+/// Minimum-jerk position profile on normalised time `s` in [0, 1]:
+/// `f(s) = 6 s^5 - 15 s^4 + 10 s^3` (gaze.md M2, M9). Clamped outside [0, 1].
+pub fn min_jerk(s: f64) -> f64 {
+    let s = s.clamp(0.0, 1.0);
+    s * s * s * (10.0 + s * (-15.0 + 6.0 * s))
+}
+
+/// Peak of [`min_jerk_d`] (at `s = 1/2`): a minimum-jerk move of amplitude
+/// `A` and duration `T` peaks at `1.875 A / T` (gaze.md M3, M9).
+pub const MIN_JERK_PEAK: f64 = 1.875;
+
+/// First derivative of [`min_jerk`] with respect to `s`: `30 s^4 - 60 s^3 + 30 s^2`.
+/// Zero outside [0, 1]. Its peak, at `s = 1/2`, is 1.875.
+pub fn min_jerk_d(s: f64) -> f64 {
+    if !(0.0..=1.0).contains(&s) {
+        return 0.0;
+    }
+    30.0 * s * s * (s - 1.0) * (s - 1.0)
+}
+
+/// Second derivative of [`min_jerk`] with respect to `s`: `120 s^3 - 180 s^2 + 60 s`.
+/// Zero outside [0, 1].
+pub fn min_jerk_dd(s: f64) -> f64 {
+    if !(0.0..=1.0).contains(&s) {
+        return 0.0;
+    }
+    60.0 * s * (2.0 * s - 1.0) * (s - 1.0)
+}
+
+use glam::DVec3;
+
+/// Unit direction for a yaw/pitch pair in the head (or eye-socket) frame.
+///
+/// Frame convention used throughout shisen: +Z forward, +Y up, +X to the
+/// agent's left. Yaw is positive to the left (about +Y), pitch positive up
+/// (gaze.md, "Angles"). This is Fick's gimbal: yaw outer, pitch inner.
+pub fn dir_from_yaw_pitch(yaw: f64, pitch: f64) -> DVec3 {
+    let (sy, cy) = yaw.sin_cos();
+    let (sp, cp) = pitch.sin_cos();
+    DVec3::new(cp * sy, sp, cp * cy)
+}
+
+/// Great-circle angle (rad, in [0, pi]) between two directions of any
+/// length: `atan2(|a x b|, a . b)`, accurate near 0 and pi where `acos` of
+/// the dot product is not. The one angle-between-directions in the crate.
+pub fn angle_between(a: DVec3, b: DVec3) -> f64 {
+    a.cross(b).length().atan2(a.dot(b))
+}
+
+/// Probability that a Poisson process of `rate` (1/s) fires within one
+/// step of `dt` seconds: `1 - exp(-rate dt)`.
+pub fn poisson_step(rate: f64, dt: f64) -> f64 {
+    1.0 - (-rate * dt).exp()
+}
+
+/// Inverse of [`dir_from_yaw_pitch`] for any non-zero direction.
+/// Returns `(yaw, pitch)` in radians; yaw in (-pi, pi], pitch in [-pi/2, pi/2].
+pub fn yaw_pitch_of(dir: DVec3) -> (f64, f64) {
+    let yaw = dir.x.atan2(dir.z);
+    let pitch = dir.y.atan2((dir.x * dir.x + dir.z * dir.z).sqrt());
+    (yaw, pitch)
+}
+
+/// Yaw (about up, + left), pitch (+ up), roll (about forward) of a joint
+/// rotation `q = Ry(yaw) Rx(-pitch) Rz(roll)`, radians.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct JointAngles {
+    /// Yaw, radians.
+    pub yaw: f64,
+    /// Pitch, radians.
+    pub pitch: f64,
+    /// Roll, radians.
+    pub roll: f64,
+}
+
+impl JointAngles {
+    /// Decompose a relative rotation.
+    pub fn from_quat(q: glam::Quat) -> Self {
+        let (y, x, z) = q.to_euler(glam::EulerRot::YXZ);
+        JointAngles {
+            yaw: y as f64,
+            pitch: -x as f64,
+            roll: z as f64,
+        }
+    }
+
+    /// Compose the rotation these angles describe.
+    pub fn to_quat(self) -> glam::Quat {
+        glam::Quat::from_euler(
+            glam::EulerRot::YXZ,
+            self.yaw as f32,
+            -self.pitch as f32,
+            self.roll as f32,
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn min_jerk_end_points_and_peak() {
+        assert_eq!(min_jerk(0.0), 0.0);
+        assert!((min_jerk(1.0) - 1.0).abs() < 1e-15);
+        assert!((min_jerk(0.5) - 0.5).abs() < 1e-15);
+        assert!((min_jerk_d(0.5) - 1.875).abs() < 1e-12);
+        assert_eq!(min_jerk_d(0.0), 0.0);
+        assert_eq!(min_jerk_d(1.0), 0.0);
+    }
+
+    #[test]
+    fn yaw_pitch_round_trip_and_signs() {
+        let d = dir_from_yaw_pitch(0.3, 0.0);
+        assert!(d.x > 0.0, "positive yaw looks to the left (+X)");
+        assert!(
+            dir_from_yaw_pitch(0.0, 0.2).y > 0.0,
+            "positive pitch looks up"
+        );
+        for &(y, p) in &[(0.0, 0.0), (0.5, -0.3), (-1.2, 0.7), (2.0, 1.0)] {
+            let (y2, p2) = yaw_pitch_of(dir_from_yaw_pitch(y, p));
+            assert!((y - y2).abs() < 1e-12 && (p - p2).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn derivatives_match_finite_differences() {
+        let h = 1e-6;
+        for i in 1..100 {
+            let s = i as f64 / 100.0;
+            let fd = (min_jerk(s + h) - min_jerk(s - h)) / (2.0 * h);
+            assert!((fd - min_jerk_d(s)).abs() < 1e-6, "s={s}");
+            let fdd = (min_jerk_d(s + h) - min_jerk_d(s - h)) / (2.0 * h);
+            assert!((fdd - min_jerk_dd(s)).abs() < 1e-5, "s={s}");
+        }
+    }
+}

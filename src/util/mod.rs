@@ -1,0 +1,7 @@
+//! The bottom layer: small numerical pieces, value checks used while files
+//! are read, and RON loading with `file:line:col` errors. Nothing here knows
+//! about the virtual human.
+
+pub mod check;
+pub mod math;
+pub mod ron;

@@ -1,0 +1,103 @@
+//! Reading RON files: one error type that names `file:line:col: field.path`,
+//! one parser that produces it, and one way to read a file's text.
+
+use std::path::Path;
+
+use serde::de::DeserializeOwned;
+use thiserror::Error;
+
+/// A scene or gains file that could not be loaded.
+#[derive(Debug, Error)]
+pub enum LoadError {
+    /// The file could not be read.
+    #[error("{file}: {source}")]
+    Io {
+        /// The file.
+        file: String,
+        /// The OS error.
+        source: std::io::Error,
+    },
+    /// Syntax error, unknown field or invalid value.
+    #[error("{file}:{line}:{col}: {field}: {message}")]
+    Invalid {
+        /// The file.
+        file: String,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        col: usize,
+        /// Dotted path of the field (`timeline[2].do.Punch.speed`), or `-` for syntax errors.
+        field: String,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// Parse RON text into `T`, reporting the file, line, column and field path.
+pub fn parse_ron<T: DeserializeOwned>(text: &str, file: &Path) -> Result<T, LoadError> {
+    let file_s = file.display().to_string();
+    let invalid = |line, col, field: String, message: String| LoadError::Invalid {
+        file: file_s.clone(),
+        line,
+        col,
+        field,
+        message,
+    };
+    // Optional fields are written plainly (`gains: Gains(...)`, not `Some(...)`).
+    let options =
+        ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
+    let mut de = ron::Deserializer::from_str_with_options(text, &options).map_err(|e| {
+        invalid(
+            e.span.start.line,
+            e.span.start.col,
+            "-".into(),
+            e.code.to_string(),
+        )
+    })?;
+    let value = match serde_path_to_error::deserialize::<_, T>(&mut de) {
+        Ok(v) => v,
+        Err(err) => {
+            let path = err.path().to_string();
+            let spanned = de.span_error(err.into_inner());
+            let field = if path == "." { "-".to_string() } else { path };
+            return Err(invalid(
+                spanned.span.start.line,
+                spanned.span.start.col,
+                field,
+                spanned.code.to_string(),
+            ));
+        }
+    };
+    de.end().map_err(|e| {
+        let s = de.span_error(e);
+        invalid(
+            s.span.start.line,
+            s.span.start.col,
+            "-".into(),
+            s.code.to_string(),
+        )
+    })?;
+    Ok(value)
+}
+
+/// 1-based line of the first occurrence of `needle` in `text` (for errors
+/// found after parsing, such as a reference to an undeclared body).
+pub fn line_of(text: &str, needle: &str) -> (usize, usize) {
+    match text.find(needle) {
+        Some(pos) => {
+            let before = &text[..pos];
+            let line = before.matches('\n').count() + 1;
+            let col = pos - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+            (line, col)
+        }
+        None => (1, 1),
+    }
+}
+
+/// Read a whole text file, mapping failure to [`LoadError::Io`] naming it.
+pub fn read_text(path: &Path) -> Result<String, LoadError> {
+    std::fs::read_to_string(path).map_err(|e| LoadError::Io {
+        file: path.display().to_string(),
+        source: e,
+    })
+}
