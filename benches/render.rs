@@ -8,7 +8,6 @@ use std::hint::black_box;
 use criterion::{Criterion, criterion_group, criterion_main};
 use shisen::render::{Frame, Headless, Overlays, View};
 use shisen::scene::LoadedScene;
-use shisen::sim::Sim;
 
 const SIZE: (u32, u32) = (1280, 720);
 

@@ -12,7 +12,7 @@ use shisen::agent::vision::{VisionParams, see};
 use shisen::physics::body::{BodyPlan, Shape};
 use shisen::physics::world::{PropSpec, World};
 use shisen::scene::LoadedScene;
-use shisen::sim::{DT, Sim};
+use shisen::sim::DT;
 
 fn full_step(c: &mut Criterion) {
     let loaded = LoadedScene::default_scene();

@@ -1,6 +1,6 @@
 //! The action plan (boxing.md): guard, attack, idle. It decides what the VH
 //! wants to look at (the top-down request, gaze.md 5) and where its gloves
-//! go (minimum-jerk reaches, tracked through the arm joints via [`arm_ik`]).
+//! go (minimum-jerk reaches, tracked through the arm joints by the body plan's inverse kinematics).
 
 use glam::DVec3;
 use rand::{Rng, RngExt};
