@@ -9,7 +9,7 @@ use crate::agent::behaviour::ActionKind;
 use crate::face::tables::Emotion;
 use crate::physics::body::seg;
 use crate::physics::world::opp;
-use crate::util::math::{JointAngles, yaw_pitch_of};
+use crate::util::math::{JointAngles, angle_between, yaw_pitch_of};
 
 /// Everything recorded about one tick (one trace row).
 #[derive(Clone, Debug, PartialEq)]
@@ -75,7 +75,7 @@ impl Sim {
             let rb = w.seg(s);
             let los = (*rb.rotation() * Vec3::Z).as_dvec3();
             let to = (choice.point - rb.translation().as_dvec3()).normalize_or(DVec3::Z);
-            los_error[k] = los.dot(to).clamp(-1.0, 1.0).acos();
+            los_error[k] = angle_between(los, to);
             let (ly, lp) = yaw_pitch_of(los);
             let (ty, tp) = yaw_pitch_of(to);
             gaze_error[k] = DVec2::new(ly - ty, lp - tp);

@@ -139,4 +139,19 @@ mod tests {
             assert!((fdd - min_jerk_dd(s)).abs() < 1e-5, "s={s}");
         }
     }
+
+    #[test]
+    fn angle_between_is_accurate_near_zero_and_for_unnormalised_input() {
+        // A line of sight computed in single precision is unit only to
+        // about 1e-7; `acos` of its dot product has a noise floor near
+        // sqrt(2e-7) ~ 4e-4 rad there, the atan2 form does not.
+        let a = DVec3::new(0.0, 0.0, 1.0 + 1e-7);
+        let b = dir_from_yaw_pitch(1e-6, 0.0);
+        assert!((angle_between(a, b) - 1e-6).abs() < 1e-12);
+        assert!((angle_between(b, -b) - std::f64::consts::PI).abs() < 1e-12);
+        assert!(
+            (angle_between(DVec3::X * 3.0, DVec3::Y * 0.5) - std::f64::consts::FRAC_PI_2).abs()
+                < 1e-15
+        );
+    }
 }
