@@ -28,9 +28,9 @@ use std::path::Path;
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use super::FaceError;
 use super::mesh::{HeadMesh, Landmarks, Rims, compute_normals, lid_zone};
 use super::model::Face;
+use super::params::FaceError;
 use super::params::FaceParams;
 
 /// A landmark given by vertex index or position (see the module docs).

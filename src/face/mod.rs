@@ -23,17 +23,4 @@ pub mod tables;
 pub mod timing;
 
 pub use model::{Face, FaceState, deform};
-
-/// Errors of the face subsystem.
-#[derive(Debug, thiserror::Error)]
-pub enum FaceError {
-    /// The RON parameter file did not parse (file, line, field included).
-    #[error("{0}")]
-    Parse(#[from] crate::util::ron::LoadError),
-    /// A parameter value is out of range or inconsistent.
-    #[error("invalid parameters: {0}")]
-    Invalid(String),
-    /// A head mesh or landmark file could not be imported (file named).
-    #[error("import: {0}")]
-    Import(String),
-}
+pub use params::FaceError;

@@ -2,10 +2,23 @@
 //! blink constants and the onset/offset durations, read from RON
 //! (`scenes/face/muscles.ron`, embedded as the default).
 
-use super::FaceError;
 use super::tables::{ActionUnit, Expression, MuscleKind};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
+
+/// Errors of the face subsystem.
+#[derive(Debug, thiserror::Error)]
+pub enum FaceError {
+    /// The RON parameter file did not parse (file, line, field included).
+    #[error("{0}")]
+    Parse(#[from] crate::util::ron::LoadError),
+    /// A parameter value is out of range or inconsistent.
+    #[error("invalid parameters: {0}")]
+    Invalid(String),
+    /// A head mesh or landmark file could not be imported (file named).
+    #[error("import: {0}")]
+    Import(String),
+}
 
 /// The default parameter file, embedded at compile time.
 pub const DEFAULT_RON: &str = include_str!("../../scenes/face/muscles.ron");

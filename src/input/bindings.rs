@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use eframe::egui;
 use serde::{Deserialize, Serialize};
 
-use super::{Command, PadButton, Stick, Trigger};
+use super::command::{Command, PadButton, Stick, Trigger};
 use crate::util::ron::LoadError;
 
 /// The embedded default bindings.

@@ -6,8 +6,9 @@ use std::collections::BTreeSet;
 use eframe::egui::Key;
 use glam::Vec3;
 
+use super::bindings::Bindings;
+use super::command::{Command, PadButton, PadState};
 use super::opponent::{DODGE, Intent};
-use super::{Bindings, Command, PadButton, PadState};
 
 /// How far a full stick deflection moves a glove, m (sideways, up).
 const STICK_RANGE: glam::Vec2 = glam::Vec2::new(0.25, 0.2);

@@ -13,7 +13,7 @@
 
 use std::time::{Duration, Instant};
 
-use super::{PadButton, PadState};
+use super::command::{PadButton, PadState};
 
 /// How often `/dev/input` is rescanned for new pads.
 pub const RESCAN: Duration = Duration::from_secs(2);

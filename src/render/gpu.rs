@@ -8,9 +8,36 @@ use std::num::NonZeroU64;
 use glam::{Mat3, Mat4, Vec3};
 use wgpu::util::DeviceExt;
 
-use super::RenderError;
 use super::frame::{Frame, LineVertex, MeshKey};
 use super::geometry::{self, MeshData, Vertex};
+
+/// Rendering errors.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// No wgpu adapter (no GPU and no software Vulkan/GL driver).
+    #[error(
+        "no graphics adapter: {0} (on a machine without a GPU install Mesa's \
+         lavapipe: apt-get install mesa-vulkan-drivers libvulkan1)"
+    )]
+    NoAdapter(String),
+    /// The adapter refused to create a device.
+    #[error("cannot create a device: {0}")]
+    Device(#[from] wgpu::RequestDeviceError),
+    /// Reading the picture back failed.
+    #[error("reading the picture back failed: {0}")]
+    Readback(String),
+    /// Read-back was asked for before anything was rendered.
+    #[error("nothing rendered yet")]
+    NothingRendered,
+    /// Writing the PNG failed.
+    #[error("cannot write {path}: {source}")]
+    Write {
+        /// Output path.
+        path: String,
+        /// Cause.
+        source: image::ImageError,
+    },
+}
 
 /// Format of the resolved colour texture (PNG bytes are its raw contents).
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;

@@ -16,39 +16,11 @@ mod gpu;
 
 pub use camera::{Camera, View};
 pub use frame::{Draw, Frame, Label, LineVertex, Material, MeshKey, Overlays, face_offset};
-pub use gpu::{COLOR_FORMAT, COLOR_FORMAT_UNORM, Renderer};
+pub use gpu::{COLOR_FORMAT, COLOR_FORMAT_UNORM, RenderError, Renderer};
 
 use std::path::Path;
 
 use crate::sim::Sim;
-
-/// Rendering errors.
-#[derive(Debug, thiserror::Error)]
-pub enum RenderError {
-    /// No wgpu adapter (no GPU and no software Vulkan/GL driver).
-    #[error(
-        "no graphics adapter: {0} (on a machine without a GPU install Mesa's \
-         lavapipe: apt-get install mesa-vulkan-drivers libvulkan1)"
-    )]
-    NoAdapter(String),
-    /// The adapter refused to create a device.
-    #[error("cannot create a device: {0}")]
-    Device(#[from] wgpu::RequestDeviceError),
-    /// Reading the picture back failed.
-    #[error("reading the picture back failed: {0}")]
-    Readback(String),
-    /// Read-back was asked for before anything was rendered.
-    #[error("nothing rendered yet")]
-    NothingRendered,
-    /// Writing the PNG failed.
-    #[error("cannot write {path}: {source}")]
-    Write {
-        /// Output path.
-        path: String,
-        /// Cause.
-        source: image::ImageError,
-    },
-}
 
 /// A device with no window, and a renderer on it.
 pub struct Headless {

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use super::Scene;
+use super::format::Scene;
 use crate::sim::expect::Expect;
 use crate::sim::timeline::{Action, Part};
 use crate::util::ron::{LoadError, line_of};

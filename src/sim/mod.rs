@@ -25,18 +25,13 @@ use crate::agent::vision::{Seen, see};
 use crate::face::FaceState;
 use crate::physics::body::{Shape, arm_ik, seg};
 use crate::physics::control::JointTarget;
+use crate::physics::world::opp;
 use crate::physics::world::{PropSpec, World};
-use crate::util::math::JointAngles;
-pub use model::{BodySpec, Model, Params, PropShape};
+use crate::util::math::{JointAngles, angle_between, yaw_pitch_of};
+pub use model::{BodySpec, DT, Model, Params, PropShape};
 pub use sample::Sample;
-use timeline::{Event, Override, Shake};
+use timeline::{Event, Timeline};
 use track::Track;
-
-/// Physics and control rate. 1 kHz: explicit PD on a 7.5 g eyeball needs
-/// omega_n dt << 1 (see control.rs), a 500 deg/s saccade moves 0.5 deg a
-/// step, and rapier still runs this model several times faster than real
-/// time (see benches/step.rs).
-pub const DT: f64 = 0.001;
 
 /// Largest reference angular speed of an arm joint, rad/s (elbow extension
 /// in a punch peaks around 20-40 rad/s).
@@ -70,10 +65,7 @@ pub struct Sim {
     /// The physics world.
     pub world: World,
     tick: u64,
-    next_event: usize,
-    events: Vec<Event>,
-    /// Scripted bodies: body, track, its last two positions.
-    tracks: Vec<(usize, Track, [DVec3; 2])>,
+    timeline: Timeline,
     /// Attention state.
     pub attention: Attention,
     /// Action planner state.
@@ -82,9 +74,6 @@ pub struct Sim {
     pub oculomotor: Oculomotor,
     /// The face's evolving state (expression, blinks).
     pub face_state: crate::face::FaceState,
-    look_at: Option<Override>,
-    occluded: [bool; 2],
-    shake: Option<Shake>,
     seen: Vec<Seen>,
     targets: Vec<JointTarget>,
     rng: Streams,
@@ -109,11 +98,10 @@ impl Sim {
     /// at equal times keep their order).
     pub fn new(model: Model, timeline: &[Event]) -> Self {
         let mut world = World::new(model.plan.clone(), model.dt);
-        let mut tracks = Vec::new();
+        let mut scripted = Vec::new();
         for k in 0..3 {
             let b = world.opponent[k];
-            let p = world.rb(b).translation().as_dvec3();
-            tracks.push((b, Track::new(p), [p; 2]));
+            scripted.push((b, world.rb(b).translation().as_dvec3()));
         }
         for b in &model.props {
             let shape = match b.shape {
@@ -131,11 +119,9 @@ impl Sim {
                 gravity: b.gravity,
             });
             if b.kinematic {
-                tracks.push((idx, Track::new(b.position), [b.position; 2]));
+                scripted.push((idx, b.position));
             }
         }
-        let mut events = timeline.to_vec();
-        events.sort_by(|a, b| a.at.total_cmp(&b.at)); // stable: file order at equal times
         let names: Vec<String> = world.bodies.iter().map(|b| b.name.clone()).collect();
         let mut targets = vec![JointTarget::default(); model.plan.segments.len()];
         let behaviour = Behaviour::new();
@@ -150,14 +136,9 @@ impl Sim {
             model,
             world,
             tick: 0,
-            next_event: 0,
-            events,
-            tracks,
+            timeline: Timeline::new(timeline, &scripted),
             attention: Attention::new(names.clone()),
             behaviour,
-            look_at: None,
-            occluded: [false; 2],
-            shake: None,
             seen: Vec::new(),
             targets,
             names,
@@ -207,10 +188,7 @@ impl Sim {
 
     /// The kinematic track of a body, if it has one.
     pub fn track_mut(&mut self, body: usize) -> Option<&mut Track> {
-        self.tracks
-            .iter_mut()
-            .find(|(b, ..)| *b == body)
-            .map(|(_, t, _)| t)
+        self.timeline.track_mut(body)
     }
 
     /// Recover from a physics explosion: the VH back at rest in its rest
@@ -239,16 +217,16 @@ impl Sim {
     /// recorded session replays tick for tick. Events in the past run in
     /// the next tick.
     pub fn push_event(&mut self, ev: Event) {
-        let at =
-            self.next_event + self.events[self.next_event..].partition_point(|e| e.at <= ev.at);
-        self.events.insert(at, ev);
+        self.timeline.push(ev);
     }
 
     /// Advance one tick and return its sample.
     pub fn step(&mut self) -> &Sample {
         let t = self.time();
-        self.run_timeline(t);
-        self.drive_scripted(t);
+        let dt = self.model.dt;
+        self.timeline
+            .run(t, &self.world, &self.model.face, &mut self.face_state);
+        self.timeline.drive(&mut self.world, t, dt);
         self.sense();
         let top_down = self.decide(t);
         let choice = self.attend(&top_down, t);
@@ -259,25 +237,9 @@ impl Sim {
         self.record(&gaze, reset)
     }
 
-    /// Scripted bodies: where they should be at the end of this tick, with
-    /// the track's velocity and acceleration (finite differences of its
-    /// last three positions).
-    fn drive_scripted(&mut self, t: f64) {
-        let dt = self.model.dt;
-        let t_next = t + dt;
-        for (b, tr, hist) in &mut self.tracks {
-            let p = tr.position(t_next);
-            let [p1, p2] = *hist;
-            let v = (p - p1) / dt;
-            let a = (p - 2.0 * p1 + p2) / (dt * dt);
-            *hist = [p, p1];
-            self.world.drive(*b, p.as_vec3(), v.as_vec3(), a.as_vec3());
-        }
-    }
-
     /// Sense: the bodies in view through the open eyes, with saliency (M1).
     fn sense(&mut self) {
-        let open = self.occluded.map(|o| !o);
+        let open = self.timeline.occluded.map(|o| !o);
         see(&self.world, &self.model.params.vision, open, &mut self.seen);
     }
 
@@ -317,7 +279,7 @@ impl Sim {
             t,
             self.model.dt,
         );
-        match &self.look_at {
+        match &self.timeline.look_at {
             Some(o) if t < o.until => {
                 let c = GazeChoice {
                     name: o.body.map_or("point".into(), |b| self.names[b].clone()),
@@ -358,14 +320,16 @@ impl Sim {
                 DVec2::new(a.yaw, a.pitch)
             }),
             neck_angles: self.world.joint_angles(seg::HEAD),
-            visible: self.occluded.map(|o| !o),
+            visible: self.timeline.occluded.map(|o| !o),
             style: self
+                .timeline
                 .look_at
                 .as_ref()
                 .filter(|o| t < o.until)
                 .and_then(|o| o.style)
                 .unwrap_or(p.oculomotor.gaze_shift),
             neck_override: self
+                .timeline
                 .shake
                 .filter(|s| t < s.until)
                 .map(|s| s.command(t + dt)),
@@ -450,6 +414,66 @@ impl Sim {
             .then(|| sample.gaze_target.clone());
         self.last = Some(sample);
         self.last.as_ref().expect("just set")
+    }
+
+    /// Measure the tick's outcome (part of the record stage).
+    fn sample(
+        &self,
+        choice: &GazeChoice,
+        eye_target: &[DVec2; 2],
+        neck_target: JointAngles,
+    ) -> Sample {
+        let w = &self.world;
+        let mut los_error = [0.0; 2];
+        let mut gaze_error = [DVec2::ZERO; 2];
+        let mut eye_actual = [DVec2::ZERO; 2];
+        for (k, s) in [seg::EYE_L, seg::EYE_R].into_iter().enumerate() {
+            let rb = w.seg(s);
+            let los = (*rb.rotation() * Vec3::Z).as_dvec3();
+            let to = (choice.point - rb.translation().as_dvec3()).normalize_or(DVec3::Z);
+            los_error[k] = angle_between(los, to);
+            let (ly, lp) = yaw_pitch_of(los);
+            let (ty, tp) = yaw_pitch_of(to);
+            gaze_error[k] = DVec2::new(ly - ty, lp - tp);
+            let a = w.joint_angles(s);
+            eye_actual[k] = DVec2::new(a.yaw, a.pitch);
+        }
+        let head_fwd = (*w.seg(seg::HEAD).rotation() * Vec3::Z).as_dvec3();
+        let (hy, hp) = yaw_pitch_of(head_fwd);
+        let mut top: Vec<(String, f64)> = self
+            .seen
+            .iter()
+            .map(|s| (self.names[s.body].clone(), self.attention.scores[s.body]))
+            .collect();
+        top.sort_by(|a, b| b.1.total_cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
+        top.truncate(3);
+        let head_body = seg::HEAD;
+        let head_hit = [opp::LEFT_GLOVE, opp::RIGHT_GLOVE]
+            .iter()
+            .any(|&g| w.in_contact(w.opponent[g], head_body));
+        Sample {
+            t: self.time(),
+            action: self.behaviour.action(),
+            action_target: self.behaviour.target_name(&self.names).map(String::from),
+            gaze_target: choice.name.clone(),
+            gaze_point: choice.point,
+            source: choice.source,
+            amount: choice.amount,
+            eye_target: *eye_target,
+            eye_actual,
+            los_error,
+            gaze_error,
+            neck_target,
+            neck_actual: w.joint_angles(seg::HEAD),
+            head_world: DVec2::new(hy, hp),
+            top_saliency: top,
+            finite: w.is_finite(),
+            punching: self.behaviour.punching(),
+            head_hit,
+            emotion: self.face_state.emotion,
+            blink: self.face_state.blink.closure(&self.model.face.params.blink),
+            reset: false,
+        }
     }
 }
 

@@ -1,10 +1,10 @@
 //! The static side of a simulation, as MuJoCo separates `mjModel` from
 //! `mjData`: the body plan, the props, the face and every stage's
-//! parameters. Built once (from a scene, see [`crate::scene::LoadedScene::model`],
-//! or by hand); [`crate::sim::Sim`] holds only what evolves.
+//! parameters, built once (by the scene layer from a scene file, or by
+//! hand); the simulation holds only what evolves.
 //!
 //! Live edits (the app's sliders, the tuning panel) change [`Params`]
-//! through [`crate::sim::Sim::edit_params`], the one documented path: the
+//! through `Sim::edit_params`, the one documented path: the
 //! new values are read from the next tick on. The rest of the model (plan,
 //! props, face, step, seed) shapes the world when the simulation is built
 //! and is fixed afterwards.
@@ -22,6 +22,12 @@ use crate::agent::vision::VisionParams;
 use crate::face::Face;
 use crate::physics::body::BodyPlan;
 use crate::physics::control::Gains;
+
+/// Physics and control rate. 1 kHz: explicit PD on a 7.5 g eyeball needs
+/// omega_n dt << 1 (see physics/control.rs), a 500 deg/s saccade moves
+/// 0.5 deg a step, and rapier still runs this model several times faster
+/// than real time (see benches/step.rs).
+pub const DT: f64 = 0.001;
 
 /// Every parameter a running simulation may change between ticks.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -59,10 +65,10 @@ pub struct Model {
 
 impl Model {
     /// A model with the default body plan, the generated face and default
-    /// parameters at the standard step ([`crate::sim::DT`]).
+    /// parameters at the standard step ([`DT`]).
     pub fn new(face: Arc<Face>, params: Params, seed: u64) -> Model {
         Model {
-            dt: crate::sim::DT,
+            dt: DT,
             seed,
             plan: BodyPlan::default(),
             props: Vec::new(),

@@ -1,15 +1,12 @@
 //! What a tick leaves behind: one [`Sample`] (a trace row), measured from
-//! the world after the physics step.
+//! the world after the physics step by the record stage.
 
-use glam::{DVec2, DVec3, Vec3};
+use glam::{DVec2, DVec3};
 
-use super::Sim;
-use crate::agent::attention::{GazeChoice, Source};
+use crate::agent::attention::Source;
 use crate::agent::behaviour::ActionKind;
 use crate::face::tables::Emotion;
-use crate::physics::body::seg;
-use crate::physics::world::opp;
-use crate::util::math::{JointAngles, angle_between, yaw_pitch_of};
+use crate::util::math::JointAngles;
 
 /// Everything recorded about one tick (one trace row).
 #[derive(Clone, Debug, PartialEq)]
@@ -57,66 +54,4 @@ pub struct Sample {
     pub blink: f64,
     /// The physics blew up this tick and the VH was reset to rest.
     pub reset: bool,
-}
-
-impl Sim {
-    /// Record stage: measure the tick's outcome.
-    pub(super) fn sample(
-        &self,
-        choice: &GazeChoice,
-        eye_target: &[DVec2; 2],
-        neck_target: JointAngles,
-    ) -> Sample {
-        let w = &self.world;
-        let mut los_error = [0.0; 2];
-        let mut gaze_error = [DVec2::ZERO; 2];
-        let mut eye_actual = [DVec2::ZERO; 2];
-        for (k, s) in [seg::EYE_L, seg::EYE_R].into_iter().enumerate() {
-            let rb = w.seg(s);
-            let los = (*rb.rotation() * Vec3::Z).as_dvec3();
-            let to = (choice.point - rb.translation().as_dvec3()).normalize_or(DVec3::Z);
-            los_error[k] = angle_between(los, to);
-            let (ly, lp) = yaw_pitch_of(los);
-            let (ty, tp) = yaw_pitch_of(to);
-            gaze_error[k] = DVec2::new(ly - ty, lp - tp);
-            let a = w.joint_angles(s);
-            eye_actual[k] = DVec2::new(a.yaw, a.pitch);
-        }
-        let head_fwd = (*w.seg(seg::HEAD).rotation() * Vec3::Z).as_dvec3();
-        let (hy, hp) = yaw_pitch_of(head_fwd);
-        let mut top: Vec<(String, f64)> = self
-            .seen
-            .iter()
-            .map(|s| (self.names[s.body].clone(), self.attention.scores[s.body]))
-            .collect();
-        top.sort_by(|a, b| b.1.total_cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
-        top.truncate(3);
-        let head_body = seg::HEAD;
-        let head_hit = [opp::LEFT_GLOVE, opp::RIGHT_GLOVE]
-            .iter()
-            .any(|&g| w.in_contact(w.opponent[g], head_body));
-        Sample {
-            t: self.time(),
-            action: self.behaviour.action(),
-            action_target: self.behaviour.target_name(&self.names).map(String::from),
-            gaze_target: choice.name.clone(),
-            gaze_point: choice.point,
-            source: choice.source,
-            amount: choice.amount,
-            eye_target: *eye_target,
-            eye_actual,
-            los_error,
-            gaze_error,
-            neck_target,
-            neck_actual: w.joint_angles(seg::HEAD),
-            head_world: DVec2::new(hy, hp),
-            top_saliency: top,
-            finite: w.is_finite(),
-            punching: self.behaviour.punching(),
-            head_hit,
-            emotion: self.face_state.emotion,
-            blink: self.face_state.blink.closure(&self.model.face.params.blink),
-            reset: false,
-        }
-    }
 }

@@ -7,10 +7,11 @@ use std::path::PathBuf;
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
-use super::Sim;
+use super::track::Track;
 use crate::agent::oculomotor::{AxisCommand, GazeShiftLaw};
+use crate::face::{Face, FaceState};
 use crate::physics::body::seg;
-use crate::physics::world::opp;
+use crate::physics::world::{World, opp};
 
 /// The opponent's hands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
@@ -231,27 +232,92 @@ impl Shake {
     }
 }
 
-impl Sim {
-    fn part_body(&self, part: &Part) -> usize {
-        match part {
-            Part::Head => self.world.opponent[opp::HEAD],
-            Part::LeftGlove => self.world.opponent[opp::LEFT_GLOVE],
-            Part::RightGlove => self.world.opponent[opp::RIGHT_GLOVE],
-            Part::Body(name) => self
-                .world
-                .body_index(name)
-                .expect("scene validation checked body names"),
+/// The body a part names.
+fn part_body(world: &World, part: &Part) -> usize {
+    match part {
+        Part::Head => world.opponent[opp::HEAD],
+        Part::LeftGlove => world.opponent[opp::LEFT_GLOVE],
+        Part::RightGlove => world.opponent[opp::RIGHT_GLOVE],
+        Part::Body(name) => world
+            .body_index(name)
+            .expect("scene validation checked body names"),
+    }
+}
+
+/// The running timeline: the events still to come, and what past events
+/// set in motion (scripted tracks, gaze override, covered eye, imposed
+/// neck motion).
+#[derive(Clone, Debug)]
+pub struct Timeline {
+    events: Vec<Event>,
+    next: usize,
+    /// Scripted bodies: body, track, its last two positions.
+    tracks: Vec<(usize, Track, [DVec3; 2])>,
+    /// The gaze override in force, if any.
+    pub(super) look_at: Option<Override>,
+    /// Covered or shut eyes (left, right).
+    pub(super) occluded: [bool; 2],
+    /// The imposed neck motion, if any.
+    pub(super) shake: Option<Shake>,
+}
+
+impl Timeline {
+    /// A timeline of `events` (sorted here; events at equal times keep
+    /// their order) moving the scripted `bodies` (index, start position).
+    pub fn new(events: &[Event], bodies: &[(usize, DVec3)]) -> Self {
+        let mut events = events.to_vec();
+        events.sort_by(|a, b| a.at.total_cmp(&b.at)); // stable: file order at equal times
+        Timeline {
+            events,
+            next: 0,
+            tracks: bodies
+                .iter()
+                .map(|&(b, p)| (b, Track::new(p), [p; 2]))
+                .collect(),
+            look_at: None,
+            occluded: [false; 2],
+            shake: None,
         }
     }
 
-    /// Timeline stage: run every event due by `t`, in time order.
-    pub(super) fn run_timeline(&mut self, t: f64) {
-        while self.next_event < self.events.len() && self.events[self.next_event].at <= t + 1e-12 {
-            let ev = self.events[self.next_event].clone();
-            self.next_event += 1;
+    /// Schedule an event while running: it runs after the events already
+    /// scheduled for its time, exactly as if it had been appended to the
+    /// scene's timeline. Events in the past run at the next tick.
+    pub fn push(&mut self, ev: Event) {
+        let at = self.next + self.events[self.next..].partition_point(|e| e.at <= ev.at);
+        self.events.insert(at, ev);
+    }
+
+    /// The kinematic track of a body, if it has one.
+    pub fn track_mut(&mut self, body: usize) -> Option<&mut Track> {
+        self.tracks
+            .iter_mut()
+            .find(|(b, ..)| *b == body)
+            .map(|(_, t, _)| t)
+    }
+
+    /// Drive the scripted bodies to where their tracks are at `t + dt`,
+    /// with the track's velocity and acceleration (finite differences of
+    /// its last three positions).
+    pub fn drive(&mut self, world: &mut World, t: f64, dt: f64) {
+        for (b, tr, hist) in &mut self.tracks {
+            let p = tr.position(t + dt);
+            let [p1, p2] = *hist;
+            let v = (p - p1) / dt;
+            let a = (p - 2.0 * p1 + p2) / (dt * dt);
+            *hist = [p, p1];
+            world.drive(*b, p.as_vec3(), v.as_vec3(), a.as_vec3());
+        }
+    }
+
+    /// Run every event due by `t`, in time order.
+    pub fn run(&mut self, t: f64, world: &World, face: &Face, face_state: &mut FaceState) {
+        while self.next < self.events.len() && self.events[self.next].at <= t + 1e-12 {
+            let ev = self.events[self.next].clone();
+            self.next += 1;
             match ev.action {
                 Action::Move { part, to, duration } => {
-                    let b = self.part_body(&part);
+                    let b = part_body(world, &part);
                     if let Some(tr) = self.track_mut(b) {
                         tr.reach(t, to, duration);
                     }
@@ -262,7 +328,7 @@ impl Sim {
                     frequency,
                     duration,
                 } => {
-                    let b = self.part_body(&part);
+                    let b = part_body(world, &part);
                     if let Some(tr) = self.track_mut(b) {
                         tr.wave(t, amplitude, frequency, duration);
                     }
@@ -272,14 +338,14 @@ impl Sim {
                     target,
                     speed,
                 } => {
-                    let glove_r = self.model.plan.glove_radius as f64;
+                    let glove_r = world.plan.glove_radius as f64;
                     let (aim, radius) = match target {
                         PunchTarget::Head => (
-                            self.world.seg(seg::HEAD).translation().as_dvec3(),
+                            world.seg(seg::HEAD).translation().as_dvec3(),
                             0.10 + glove_r - 0.02,
                         ),
                         PunchTarget::Body => (
-                            self.world.seg(seg::TORSO).translation().as_dvec3()
+                            world.seg(seg::TORSO).translation().as_dvec3()
                                 + DVec3::new(0.0, 0.1, 0.1),
                             glove_r - 0.02,
                         ),
@@ -289,8 +355,8 @@ impl Sim {
                         Hand::Left => Part::LeftGlove,
                         Hand::Right => Part::RightGlove,
                     };
-                    let b = self.part_body(&part);
-                    let from = self.world.rb(b).translation().as_dvec3();
+                    let b = part_body(world, &part);
+                    let from = world.rb(b).translation().as_dvec3();
                     // Stop where the glove's surface just meets the target's.
                     let dir = (aim - from).normalize_or(DVec3::NEG_Z);
                     let to = aim - dir * radius;
@@ -315,7 +381,7 @@ impl Sim {
                     })
                 }
                 Action::Track { body, until } => {
-                    let b = self.world.body_index(&body).expect("validated body name");
+                    let b = world.body_index(&body).expect("validated body name");
                     self.look_at = Some(Override {
                         body: Some(b),
                         point: DVec3::ZERO,
@@ -330,7 +396,7 @@ impl Sim {
                     rate_deg,
                     duration,
                 } => {
-                    let b = self.part_body(&part);
+                    let b = part_body(world, &part);
                     if let Some(tr) = self.track_mut(b) {
                         tr.orbit(t, centre, rate_deg.to_radians(), duration);
                     }
@@ -356,13 +422,7 @@ impl Sim {
                     intensity,
                     speed,
                     pattern,
-                } => self.face_state.set_emotion(
-                    &self.model.face,
-                    emotion,
-                    intensity as f32,
-                    speed,
-                    pattern,
-                ),
+                } => face_state.set_emotion(face, emotion, intensity as f32, speed, pattern),
             }
         }
     }

@@ -2,10 +2,12 @@
 
 use std::path::PathBuf;
 
+use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use shisen::physics::body::Group;
 use shisen::render::View;
+use shisen::scene::LoadedScene;
 
 /// shisen (視線): a virtual human that boxes with you and looks where a person would.
 #[derive(Parser)]
@@ -241,4 +243,11 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
 
 pub fn parse_view(s: &str) -> Result<View, String> {
     View::parse(s).ok_or_else(|| format!("expected first, orbit or face, got {s}"))
+}
+
+pub fn load(scene: &str) -> Result<LoadedScene> {
+    if scene == "default" {
+        return Ok(LoadedScene::default_scene());
+    }
+    Ok(LoadedScene::load(std::path::Path::new(scene))?)
 }

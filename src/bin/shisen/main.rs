@@ -5,8 +5,6 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 use clap::Parser;
 
-use shisen::scene::LoadedScene;
-
 mod cli;
 mod face;
 mod run;
@@ -16,13 +14,6 @@ use cli::*;
 use face::face_cmd;
 use run::{RunArgs, render, run, soak_cmd};
 use tune::{sweep_cmd, tune_cmd};
-
-fn load(scene: &str) -> Result<LoadedScene> {
-    if scene == "default" {
-        return Ok(LoadedScene::default_scene());
-    }
-    Ok(LoadedScene::load(std::path::Path::new(scene))?)
-}
 
 fn report(r: Result<()>) -> ExitCode {
     match r {

@@ -11,7 +11,6 @@ use shisen::sim::DT;
 use shisen::tools::headless;
 
 use crate::cli::*;
-use crate::load;
 
 pub fn render(
     scene: &str,

@@ -3,7 +3,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::*;
+use glam::DVec2;
+
+use super::law::*;
 
 /// Named expressive gaze shifts. Takagi & Takeda name these variants but
 /// publish parameters only for the dialogue-like test 2; the values below are

@@ -2,7 +2,7 @@
 //! seconds): table 1 (head fits to measured movements) and the parameters
 //! of their subjective test 2 (gaze.md 10).
 
-use super::{AxisTrack, GazeShift, Sigmoid};
+use super::law::{AxisTrack, GazeShift, Sigmoid};
 
 /// Head axis of a table row.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
