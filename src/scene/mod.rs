@@ -6,7 +6,7 @@
 //! `file:line:col: field.path: message` and nothing runs.
 
 //!
-//! [`format`] holds the types of a file, [`validate`] the checks that need
+//! [`format`](mod@format) holds the types of a file, `validate` the checks that need
 //! the whole scene, [`load`] the resolution of what a scene refers to and
 //! the [`Model`](crate::sim::Model) it describes.
 
