@@ -18,6 +18,10 @@ pub struct Report {
     pub sim_time: f64,
     /// Physics explosions recovered from (VH resets).
     pub resets: u32,
+    /// Saccades the VH made.
+    pub saccades: u32,
+    /// Head movements it started.
+    pub head_moves: u32,
 }
 
 impl Report {
@@ -58,5 +62,7 @@ pub fn run(
         ticks,
         sim_time: ticks as f64 * DT,
         resets: sim.resets,
+        saccades: sim.oculomotor.saccades,
+        head_moves: sim.oculomotor.head_moves,
     })
 }

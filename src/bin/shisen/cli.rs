@@ -8,6 +8,7 @@ use clap::{Parser, Subcommand};
 use shisen::physics::body::Group;
 use shisen::render::View;
 use shisen::scene::LoadedScene;
+use shisen::tools::table::Shard;
 
 /// shisen (視線): a virtual human that boxes with you and looks where a person would.
 #[derive(Parser)]
@@ -115,6 +116,55 @@ pub enum Command {
         /// Folder for sweep.csv and sweep.png (re-running resumes).
         #[arg(long, default_value = "sweep-out")]
         out: PathBuf,
+        /// Run only this share of the runs: I/N, 0 <= I < N.
+        #[arg(long, default_value = "0/1")]
+        shard: Shard,
+    },
+    /// Run every scene of some files and folders in parallel, judge their
+    /// expectations, and report (exit 0 all hold, 1 one fails, 2 a scene
+    /// cannot be loaded).
+    Test {
+        /// Scene files, or folders (their `.ron` files, not subfolders).
+        #[arg(default_value = "scenes")]
+        paths: Vec<PathBuf>,
+        /// Scenes run at once (default: every core).
+        #[arg(long)]
+        jobs: Option<usize>,
+        /// Write a JUnit XML report (Surefire/Jenkins junit-10.xsd) here.
+        #[arg(long)]
+        junit: Option<PathBuf>,
+        /// Keep each scene's trace (NAME.csv) and plot (NAME.png) in this folder.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Run only this share of the scenes: I/N, 0 <= I < N (scene k is
+        /// shard k mod N's).
+        #[arg(long, default_value = "0/1")]
+        shard: Shard,
+    },
+    /// Run a study (a base scene with fields varied over values and
+    /// seeds) into a resumable CSV, one row per run.
+    Study {
+        /// The study file (RON).
+        study: PathBuf,
+        /// Results CSV (re-running resumes it; other settings are refused).
+        #[arg(long)]
+        out: PathBuf,
+        /// Runs at once (default: every core).
+        #[arg(long)]
+        jobs: Option<usize>,
+        /// Run only this share of the runs: I/N, 0 <= I < N.
+        #[arg(long, default_value = "0/1")]
+        shard: Shard,
+    },
+    /// Join the outputs of shards: results CSVs of `study` and `sweep`, or
+    /// JUnit reports of `test` (when OUT ends in .xml).
+    Merge {
+        /// The merged file to write (must not exist).
+        #[arg(long)]
+        out: PathBuf,
+        /// The shards' outputs.
+        #[arg(required = true)]
+        inputs: Vec<PathBuf>,
     },
     /// Spar against a seeded random opponent for N simulated minutes,
     /// checking invariants every tick, and print a summary.

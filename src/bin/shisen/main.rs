@@ -5,11 +5,13 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 use clap::Parser;
 
+mod batch;
 mod cli;
 mod face;
 mod run;
 mod tune;
 
+use batch::{jobs, merge_cmd, study_cmd, test_cmd};
 use cli::*;
 use face::face_cmd;
 use run::{RunArgs, render, run, soak_cmd};
@@ -109,7 +111,30 @@ fn main() -> ExitCode {
             grid,
             seed,
             out,
-        }) => report(sweep_cmd(group.into(), runs, grid, seed, &out)),
+            shard,
+        }) => report(sweep_cmd(group.into(), runs, grid, seed, &out, shard)),
+        Some(Command::Test {
+            paths,
+            jobs: j,
+            junit,
+            out,
+            shard,
+        }) => match jobs(j)
+            .and_then(|j| test_cmd(&paths, j, shard, junit.as_deref(), out.as_deref()))
+        {
+            Ok(code) => code,
+            Err(e) => {
+                eprintln!("error: {e:#}");
+                ExitCode::from(2)
+            }
+        },
+        Some(Command::Study {
+            study,
+            out,
+            jobs: j,
+            shard,
+        }) => report(jobs(j).and_then(|j| study_cmd(&study, &out, j, shard))),
+        Some(Command::Merge { out, inputs }) => report(merge_cmd(&inputs, &out)),
         Some(Command::Face { command }) => report(face_cmd(command)),
         Some(Command::ExportMjcf { out }) => report(
             std::fs::write(

@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
+use shisen::tools::table::{ResultsFile, Shard, settings_line};
 
 use shisen::physics::body::Group;
 use shisen::physics::control::Gains;
@@ -95,11 +96,34 @@ pub fn sweep_cmd(
     grid: bool,
     seed: u64,
     out: &std::path::Path,
+    shard: Shard,
 ) -> Result<()> {
     use shisen::tools::tune;
+    if grid && runs < 12 {
+        anyhow::bail!("--runs: a grid needs at least 12 runs (2 kp x 2 kd x 3 steps), got {runs}");
+    }
+    if runs == 0 {
+        anyhow::bail!("--runs: must be at least 1");
+    }
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
-    let points = tune::sweep_points(group, runs, grid, seed);
-    let rows = tune::sweep(group, &points, &Gains::default(), &out.join("sweep.csv"))?;
+    let points: Vec<_> = tune::sweep_points(group, runs, grid, seed)
+        .into_iter()
+        .filter(|p| shard.contains(p.id))
+        .collect();
+    let settings = settings_line(
+        "sweep",
+        &[
+            ("group", format!("{group:?}")),
+            ("runs", runs.to_string()),
+            ("grid", grid.to_string()),
+            ("seed", seed.to_string()),
+        ],
+        shard,
+    );
+    let csv = out.join("sweep.csv");
+    let results = ResultsFile::open(&csv, &settings, tune::SWEEP_HEADER)?;
+    let rows = tune::sweep(group, &points, &Gains::default(), &results)?;
+    results.finish()?;
     let best = rows
         .iter()
         .filter(|r| r.1.is_finite())

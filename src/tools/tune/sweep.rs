@@ -8,6 +8,7 @@ use super::auto::*;
 use crate::physics::body::Group;
 use crate::physics::control::{Gains, JointGains};
 use crate::tools::plot::{Panel, Series, Stroke, chart};
+use crate::tools::table::ResultsFile;
 
 /// One run of a sweep.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -23,7 +24,9 @@ pub struct SweepPoint {
 }
 
 /// The points of a sweep around the physically based guess: a grid
-/// (`grid = true`: kp x kd x dt) or seeded random samples, `runs` of them.
+/// (`grid = true`: kp x kd x dt, the largest square kp x kd grid with at
+/// most `runs` points over the three steps, so at least 12) or `runs`
+/// seeded random samples.
 /// kp and kd range over a factor 5 either side of the guess (log scale);
 /// dt over 0.5, 1 and 2 ms.
 pub fn sweep_points(group: Group, runs: usize, grid: bool, seed: u64) -> Vec<SweepPoint> {
@@ -32,7 +35,7 @@ pub fn sweep_points(group: Group, runs: usize, grid: bool, seed: u64) -> Vec<Swe
     let dts = [0.0005, 0.001, 0.002];
     let span = 5f64.ln();
     if grid {
-        let per = ((runs as f64 / dts.len() as f64).sqrt().ceil() as usize).max(2);
+        let per = ((runs as f64 / dts.len() as f64).sqrt().floor() as usize).max(2);
         let lin = |i: usize| -span + 2.0 * span * i as f64 / (per - 1) as f64;
         let mut v = Vec::new();
         for &dt in &dts {
@@ -61,49 +64,35 @@ pub fn sweep_points(group: Group, runs: usize, grid: bool, seed: u64) -> Vec<Swe
     }
 }
 
-/// Run a sweep in parallel on all cores, appending one CSV row per run to
-/// `csv` (resumable: runs already in the file are skipped), with a progress
-/// bar. Returns every row (old and new) as (point, score cost, meets).
+/// Header of a sweep's results file ([`crate::tools::table`]).
+pub const SWEEP_HEADER: &str = "id,kp,kd,dt,cost,meets,traj_rms_deg,step_overshoot,step_settling_s";
+
+/// Run the sweep points not yet in `results` in parallel on all cores,
+/// appending one row per run as it finishes, with a progress bar. Returns
+/// every row (resumed and new) as (point, score cost, meets), by id.
 pub fn sweep(
     group: Group,
     points: &[SweepPoint],
     base: &Gains,
-    csv: &Path,
+    results: &ResultsFile,
 ) -> anyhow::Result<Vec<(SweepPoint, f64, bool)>> {
-    use std::io::Write;
-    let mut done = std::collections::BTreeMap::new();
-    if let Ok(text) = std::fs::read_to_string(csv) {
-        for line in text.lines().skip(1) {
-            let f: Vec<&str> = line.split(',').collect();
-            if let [id, kp, kd, dt, cost, meets, ..] = f[..]
-                && let (Ok(id), Ok(kp), Ok(kd), Ok(dt), Ok(cost)) = (
-                    id.parse(),
-                    kp.parse(),
-                    kd.parse(),
-                    dt.parse(),
-                    cost.parse::<f64>(),
-                )
-            {
-                done.insert(id, (SweepPoint { id, kp, kd, dt }, cost, meets == "1"));
-            }
+    let mut done = Vec::new();
+    for row in results.resumed().values() {
+        let f: Vec<&str> = row.split(',').collect();
+        if let [id, kp, kd, dt, cost, meets, ..] = f[..] {
+            let point = SweepPoint {
+                id: id.parse()?,
+                kp: kp.parse()?,
+                kd: kd.parse()?,
+                dt: dt.parse()?,
+            };
+            done.push((point, cost.parse::<f64>()?, meets == "1"));
         }
-    }
-    let fresh = !csv.exists();
-    let file = std::fs::OpenOptions::new()
-        .create(true)
-        .append(true)
-        .open(csv)?;
-    let file = std::sync::Mutex::new(std::io::BufWriter::new(file));
-    if fresh {
-        writeln!(
-            file.lock().expect("lock"),
-            "id,kp,kd,dt,cost,meets,traj_rms_deg,step_overshoot,step_settling_s"
-        )?;
     }
     let todo: Vec<SweepPoint> = points
         .iter()
         .copied()
-        .filter(|p| !done.contains_key(&p.id))
+        .filter(|p| !results.has(p.id))
         .collect();
     let bar = indicatif::ProgressBar::new(todo.len() as u64);
     bar.set_style(
@@ -112,7 +101,7 @@ pub fn sweep(
         )
         .expect("template"),
     );
-    let rows: Vec<(SweepPoint, f64, bool)> = todo
+    let rows: Vec<anyhow::Result<(SweepPoint, f64, bool)>> = todo
         .par_iter()
         .map(|p| {
             let mut g = base.clone();
@@ -122,9 +111,8 @@ pub fn sweep(
                 feedforward: base.group(group).feedforward,
             };
             let s = score(group, &g, p.dt);
-            let line = format!(
-                "{},{:.6e},{:.6e},{},{:.5},{},{:.5},{:.5},{:.5}",
-                p.id,
+            let row = format!(
+                "{:.6e},{:.6e},{},{:.5},{},{:.5},{:.5},{:.5}",
                 p.kp,
                 p.kd,
                 p.dt,
@@ -134,14 +122,16 @@ pub fn sweep(
                 s.step.overshoot,
                 s.step.settling_time
             );
-            let _ = writeln!(file.lock().expect("lock"), "{line}");
+            results.push(p.id, &row)?;
             bar.inc(1);
-            (*p, s.cost, s.meets)
+            Ok((*p, s.cost, s.meets))
         })
         .collect();
     bar.finish();
-    file.into_inner().expect("lock").flush()?;
-    let mut all: Vec<_> = done.into_values().chain(rows).collect();
+    let mut all = done;
+    for r in rows {
+        all.push(r?);
+    }
     all.sort_by_key(|r| r.0.id);
     Ok(all)
 }

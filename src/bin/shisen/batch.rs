@@ -1,0 +1,133 @@
+//! `shisen test`, `shisen study`, `shisen merge`: many runs, in parallel
+//! and in shards.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+
+use shisen::tools::batch;
+use shisen::tools::study::LoadedStudy;
+use shisen::tools::table::{self, ResultsFile, Shard};
+
+/// Threads for `--jobs` (default: every core).
+pub fn jobs(jobs: Option<usize>) -> Result<usize> {
+    match jobs {
+        Some(0) => bail!("--jobs: must be at least 1"),
+        Some(n) => Ok(n),
+        None => Ok(std::thread::available_parallelism().map_or(1, |n| n.get())),
+    }
+}
+
+/// Run every scene of `paths`; exit 0 if all hold, 1 if an expectation
+/// fails, 2 if a scene cannot be loaded (the others still run).
+pub fn test_cmd(
+    paths: &[PathBuf],
+    jobs: usize,
+    shard: Shard,
+    junit: Option<&Path>,
+    out: Option<&Path>,
+) -> Result<ExitCode> {
+    let files = batch::scene_files(paths).map_err(anyhow::Error::msg)?;
+    if files.is_empty() {
+        bail!("no scene files (.ron) in {}", show(paths));
+    }
+    if let Some(dir) = out {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    let wall = Instant::now(); // reporting only
+    let runs = batch::run_scenes(&files, jobs, shard, out);
+    for r in &runs {
+        println!("{}", r.line());
+    }
+    let errors = runs.iter().filter(|r| r.outcome.is_err()).count();
+    let failed = runs
+        .iter()
+        .filter(|r| r.outcome.is_ok() && !r.passed())
+        .count();
+    println!(
+        "{} scenes{}: {} passed, {failed} failed, {errors} could not be loaded ({:.1} s wall, {jobs} jobs)",
+        runs.len(),
+        if shard == Shard::ALL {
+            String::new()
+        } else {
+            format!(" (shard {shard})")
+        },
+        runs.len() - failed - errors,
+        wall.elapsed().as_secs_f64()
+    );
+    if let Some(p) = junit {
+        std::fs::write(p, batch::junit(&runs))
+            .with_context(|| format!("cannot write {}", p.display()))?;
+        println!("JUnit report: {}", p.display());
+    }
+    Ok(if errors > 0 {
+        ExitCode::from(2)
+    } else if failed > 0 {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
+/// Run a study (or this shard of it) into `out`, resuming what is there.
+pub fn study_cmd(study: &Path, out: &Path, jobs: usize, shard: Shard) -> Result<()> {
+    let s = LoadedStudy::load(study)?;
+    let results = ResultsFile::open(out, &s.settings(shard), &s.header())?;
+    let resumed = (0..s.runs.len())
+        .filter(|&k| shard.contains(k) && results.has(k))
+        .count();
+    let made = s.run(shard, jobs, &results)?;
+    let path = results.finish()?;
+    println!(
+        "study {}: {} runs in all; this job{}: {made} run now, {resumed} resumed; results in {}",
+        study.display(),
+        s.runs.len(),
+        if shard == Shard::ALL {
+            String::new()
+        } else {
+            format!(" (shard {shard})")
+        },
+        path.display()
+    );
+    Ok(())
+}
+
+/// Join shard outputs: results CSVs of `study`/`sweep`, or JUnit reports
+/// of `test` (`.xml`).
+pub fn merge_cmd(inputs: &[PathBuf], out: &Path) -> Result<()> {
+    if inputs.is_empty() {
+        bail!("nothing to merge");
+    }
+    if out.extension().is_some_and(|e| e == "xml") {
+        if out.exists() {
+            bail!("{}: exists already; merge writes a new file", out.display());
+        }
+        let texts = inputs
+            .iter()
+            .map(|p| {
+                std::fs::read_to_string(p).with_context(|| format!("cannot read {}", p.display()))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let merged = batch::merge_junit(&texts).map_err(anyhow::Error::msg)?;
+        std::fs::write(out, merged).with_context(|| format!("cannot write {}", out.display()))?;
+        println!("{} reports merged into {}", inputs.len(), out.display());
+    } else {
+        let n = table::merge(inputs, out)?;
+        println!(
+            "{n} rows from {} files merged into {}",
+            inputs.len(),
+            out.display()
+        );
+    }
+    Ok(())
+}
+
+fn show(paths: &[PathBuf]) -> String {
+    paths
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect::<Vec<_>>()
+        .join(", ")
+}
