@@ -4,6 +4,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mkdir -p fuzz/corpus/scene
-for f in scenes/*.ron scenes/gains/*.ron scenes/face/*.ron scenes/face/*.txt; do
+for f in scenes/*.ron scenes/gains/*.ron scenes/face/*.ron scenes/face/*.txt scenes/studies/*.ron; do
   cp "$f" "fuzz/corpus/scene/$(echo "$f" | tr / _)"
 done

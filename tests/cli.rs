@@ -178,3 +178,56 @@ fn face_export_and_calibrate_write_their_files() {
     let (code, out, err) = shisen(&["run", &scene, "--headless"]);
     assert_eq!(code, 0, "{out}{err}");
 }
+
+#[test]
+fn overrides_and_arguments_are_checked_before_anything_runs() {
+    let p = write_scene(
+        "windows.ron",
+        "Scene(duration: 2.0, expect: [GazeShare(target: \"head\", from: 0.5, to: 2.0, at_least: 0.1)])",
+    );
+    let (code, _, err) = shisen(&["run", &p, "--duration", "1"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--duration 1") && err.contains("expect[0]"),
+        "{err}"
+    );
+    let (code, _, err) = shisen(&["run", &p, "--duration", "0.0001"]);
+    assert_eq!(code, 2, "{err}");
+    let (code, _, err) = shisen(&["run", &p, "--plot", "y.csv"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains(".png"), "{err}");
+    let (code, _, err) = shisen(&["render", "default", "--at", "1e12", "--out", "x.png"]);
+    assert_eq!(code, 2, "{err}");
+    let (code, _, err) = shisen(&["soak", "--minutes", "1e9"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--force"), "{err}");
+    let (code, _, err) = shisen(&["tune", "--from-guess"]);
+    assert_eq!(code, 2, "{err}");
+    let (code, _, err) = shisen(&["--orbit", "run", &p]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--orbit"), "{err}");
+    // The window refuses a bad scene before it opens, with the run's code.
+    let bad = write_scene("bad_window.ron", "Scene(duration: -1.0)");
+    let (code, _, err) = shisen(&["--scene", &bad]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("bad_window.ron:1:"), "{err}");
+}
+
+#[test]
+fn a_plot_writes_no_file_it_was_not_asked_for_and_dash_is_stdout() {
+    let p = write_scene("plot.ron", "Scene(duration: 0.2, expect: [Finite])");
+    let dir = Path::new(&p).parent().unwrap().join("plots");
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = dir.join("x.png");
+    let csv = dir.join("x.csv");
+    std::fs::write(&csv, "mine").unwrap();
+    let (code, out, err) = shisen(&["run", &p, "--plot", png.to_str().unwrap()]);
+    assert_eq!(code, 0, "{out}{err}");
+    assert!(png.exists());
+    assert_eq!(std::fs::read_to_string(&csv).unwrap(), "mine");
+    let (code, out, err) = shisen(&["run", &p, "--trace", "-"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.starts_with("t,action,"), "{out}");
+    assert!(err.contains("PASS"), "{err}");
+    assert!(!Path::new("-").exists());
+}

@@ -1,5 +1,7 @@
 //! Scene, gains and muscle-database parsing plus validation must never
-//! panic, whatever the bytes: every failure is a `LoadError`.
+//! panic, whatever the bytes: every failure is a `LoadError`. A scene that
+//! parses is also checked against every run length an override could ask
+//! for (the cross-reference checks of `--duration`).
 #![no_main]
 
 use std::path::Path;
@@ -11,8 +13,18 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let file = Path::new("fuzz.ron");
-    if let Err(e) = shisen::scene::Scene::parse(text, file) {
-        let _ = e.to_string();
+    match shisen::scene::Scene::parse(text, file) {
+        Err(e) => {
+            let _ = e.to_string();
+        }
+        Ok(scene) => {
+            for d in [0.0, 1e-4, 0.5, scene.duration, 1e6, f64::NAN] {
+                let _ = shisen::scene::validate::check_duration(&scene, d, false);
+            }
+            // A valid scene writes back to text that reads to the same scene.
+            let again = shisen::scene::Scene::parse(&scene.to_ron(), file);
+            assert_eq!(again.ok().as_ref(), Some(&scene));
+        }
     }
     let _ = shisen::util::ron::parse_ron::<shisen::physics::control::Gains>(text, file);
     let _ = shisen::face::params::FaceParams::parse(text, file);

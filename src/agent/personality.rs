@@ -10,20 +10,26 @@ use serde::{Deserialize, Serialize};
 #[serde(default, deny_unknown_fields)]
 pub struct Personality {
     /// Top-down amount while idle (look at the opponent's face).
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    #[serde(deserialize_with = "amount")]
     pub a_face: f64,
     /// Top-down amount of the attack target.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    #[serde(deserialize_with = "amount")]
     pub a_attack: f64,
     /// Top-down amount of the guarded point.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    #[serde(deserialize_with = "amount")]
     pub a_guard: f64,
     /// Attention amount at which the head moves least (M8).
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    #[serde(deserialize_with = "amount")]
     pub a1: f64,
     /// Attention amount at which the head moves most (M8); must exceed `a1`.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    #[serde(deserialize_with = "amount")]
     pub a2: f64,
+}
+
+/// An attention amount: 0-100 (the seed's amounts are 1.5 and 3; saliency
+/// scores are m/s and rad/s, rarely above 20).
+fn amount<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    crate::util::check::in_range(d, 0.0, 100.0)
 }
 
 impl Default for Personality {

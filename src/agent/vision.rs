@@ -50,17 +50,17 @@ pub trait Scenery {
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct FieldOfView {
-    /// Toward the temple.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// Toward the temple, 0-180.
+    #[serde(deserialize_with = "half_field")]
     pub temporal_deg: f64,
-    /// Toward the nose.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// Toward the nose, 0-180.
+    #[serde(deserialize_with = "half_field")]
     pub nasal_deg: f64,
-    /// Up.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// Up, 0-180.
+    #[serde(deserialize_with = "half_field")]
     pub up_deg: f64,
-    /// Down.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// Down, 0-180.
+    #[serde(deserialize_with = "half_field")]
     pub down_deg: f64,
 }
 
@@ -73,6 +73,11 @@ impl Default for FieldOfView {
             down_deg: 75.0,
         }
     }
+}
+
+/// One side of a field, degrees: at most half a turn.
+fn half_field<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    crate::util::check::in_range(d, 0.0, 180.0)
 }
 
 /// Vision and saliency parameters (scene `vh.vision`).

@@ -56,6 +56,8 @@ impl Recorder {
         s.duration = duration;
         s.gains = Some(self.gains.clone());
         s.gains_file = None;
+        // The scene's own events after the bout ended never happened.
+        s.timeline.retain(|e| e.at <= duration);
         s.timeline.extend(self.events.iter().cloned());
         s.expect = vec![Expect::Finite];
         s
@@ -104,7 +106,9 @@ mod tests {
         let s = &loaded.scene;
         assert_eq!(s.seed, 42);
         assert_eq!(s.duration, 2.5);
-        let original = LoadedScene::default_scene().scene.timeline.len();
+        let original = (LoadedScene::default_scene().scene.timeline.iter())
+            .filter(|e| e.at <= 2.5)
+            .count();
         assert_eq!(s.timeline.len(), original + 2);
         let last = &s.timeline[original];
         assert_eq!(last.at, 0.123);

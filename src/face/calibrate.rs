@@ -157,10 +157,20 @@ pub fn calibrate(base: &FaceParams, data: &SubjectData) -> FaceParams {
     p
 }
 
-/// Read a subject CSV file and calibrate `base` from it.
+/// Read a subject CSV file and calibrate `base` from it. A result outside
+/// the database's plausible ranges (bad subject data) is refused like a
+/// bad database file.
 pub fn calibrate_file(base: &FaceParams, path: &Path) -> Result<FaceParams, LoadError> {
     let text = crate::util::ron::read_text(path)?;
-    Ok(calibrate(base, &parse_csv(&text, path)?))
+    let p = calibrate(base, &parse_csv(&text, path)?);
+    p.validate().map_err(|e| LoadError::Invalid {
+        file: path.display().to_string(),
+        line: 1,
+        col: 1,
+        field: "-".into(),
+        message: format!("the calibrated database is implausible: {e}"),
+    })?;
+    Ok(p)
 }
 
 #[cfg(test)]

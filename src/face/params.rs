@@ -157,7 +157,9 @@ impl FaceParams {
         Self::from_ron(DEFAULT_RON).expect("embedded scenes/face/muscles.ron is valid")
     }
 
-    fn validate(&self) -> Result<(), FaceError> {
+    /// Check every value against its plausible range and the tables for
+    /// completeness (files and calibration results alike).
+    pub fn validate(&self) -> Result<(), FaceError> {
         let bad = |m: String| Err(FaceError::Invalid(m));
         for e in Expression::BASIC {
             if !self.onset.contains_key(&e) || !self.offset.contains_key(&e) {
@@ -169,8 +171,16 @@ impl FaceParams {
                 return bad("Neutral must not drive muscles".into());
             }
             for (m, k) in row {
-                if !k.is_finite() {
-                    return bad(format!("{e:?}.{m:?}: must be finite, got {k}"));
+                // Contractions are fractions of the muscle's full pull
+                // (negative: relaxed below rest tone); the jaw opens by
+                // degrees, up to about 30 (a wide-open mouth).
+                let (lo, hi) = if *m == MuscleKind::Jaw {
+                    (0.0, 30.0)
+                } else {
+                    (-1.0, 1.0)
+                };
+                if !(lo..=hi).contains(k) {
+                    return bad(format!("{e:?}.{m:?}: must be in [{lo}, {hi}], got {k}"));
                 }
             }
         }

@@ -62,10 +62,11 @@ impl LoadedScene {
         let resolve = |rel: &Path| dir.map_or(rel.to_path_buf(), |d| d.join(rel));
         let gains = match (&scene.gains, &scene.gains_file) {
             (Some(g), _) => g.clone(),
-            (None, Some(rel)) => Gains::load(&resolve(rel))?,
+            (None, Some(rel)) => Gains::load(&resolve(rel))
+                .map_err(|e| e.named_by(file, text, "gains_file", "gains_file"))?,
             (None, None) => Gains::default(),
         };
-        expand_scripts(&mut scene, &resolve)?;
+        expand_scripts(&mut scene, &resolve, text, file)?;
         let face = load_face(&scene.vh.face, &resolve, text, file)?;
         Ok(LoadedScene {
             scene,
@@ -99,12 +100,24 @@ impl LoadedScene {
 }
 
 /// Replace each `EmotionScript` event by the `Emotion` events it holds.
-fn expand_scripts(scene: &mut Scene, resolve: &dyn Fn(&Path) -> PathBuf) -> Result<(), LoadError> {
+fn expand_scripts(
+    scene: &mut Scene,
+    resolve: &dyn Fn(&Path) -> PathBuf,
+    text: &str,
+    source: &Path,
+) -> Result<(), LoadError> {
     let mut out = Vec::with_capacity(scene.timeline.len());
-    for e in scene.timeline.drain(..) {
+    for (i, e) in scene.timeline.drain(..).enumerate() {
         match &e.action {
             Action::EmotionScript { file } => {
-                let steps = crate::face::script::load_script(&resolve(file))?;
+                let steps = crate::face::script::load_script(&resolve(file)).map_err(|err| {
+                    err.named_by(
+                        source,
+                        text,
+                        &file.display().to_string(),
+                        &format!("timeline[{i}].do.EmotionScript.file"),
+                    )
+                })?;
                 for (at, emotion, speed) in crate::face::script::to_events(&steps, e.at) {
                     out.push(Event {
                         at,
@@ -148,7 +161,8 @@ fn load_face(
     let params = match &c.database {
         Some(rel) => {
             let p = resolve(rel);
-            let t = crate::util::ron::read_text(&p)?;
+            let t = crate::util::ron::read_text(&p)
+                .map_err(|e| e.named_by(file, text, "database", "vh.face.database"))?;
             FaceParams::parse(&t, &p).map_err(face_err)?
         }
         None => FaceParams::default_params(),

@@ -6,13 +6,13 @@
 //! `file:line:col: field.path: message` and nothing runs.
 
 //!
-//! [`format`](mod@format) holds the types of a file, `validate` the checks that need
+//! [`format`](mod@format) holds the types of a file, [`validate`] the checks that need
 //! the whole scene, [`load`] the resolution of what a scene refers to and
 //! the [`Model`](crate::sim::Model) it describes.
 
 pub mod format;
 pub mod load;
-mod validate;
+pub mod validate;
 
 pub use format::{FaceConfig, Scene, VhParams};
 pub use load::{DEFAULT_SCENE_RON, LoadedScene};
@@ -141,5 +141,66 @@ mod tests {
             e.contains("ghost") && e.contains("timeline[0].do.part"),
             "{e}"
         );
+    }
+
+    fn err(text: &str) -> String {
+        load(text).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn misspelled_names_are_load_errors_with_a_suggestion() {
+        let e = err(
+            "Scene(\n duration: 2.0,\n expect: [GazeShareAtMost(target: \"haed\", from: 0.0, to: 1.0, at_most: 0.5)],\n)",
+        );
+        assert!(
+            e.starts_with("t.ron:3:") && e.contains("expect[0].target"),
+            "{e}"
+        );
+        assert!(e.contains("did you mean `head`"), "{e}");
+        let e = err(
+            "Scene(\n duration: 2.0,\n timeline: [(at: 0.0, do: Track(body: \"left_glvoe\", until: 1.0))],\n)",
+        );
+        assert!(e.contains("did you mean `left_glove`"), "{e}");
+        // Far from every name: no suggestion.
+        let e = err(
+            "Scene(duration: 2.0, expect: [GazeReaches(target: \"xyzzy\", from: 0.0, to: 1.0)])",
+        );
+        assert!(!e.contains("did you mean"), "{e}");
+    }
+
+    #[test]
+    fn events_after_the_end_and_double_gains_are_refused() {
+        let e = err("Scene(\n duration: 1.0,\n timeline: [(at: 1.5, do: Occlude(eye: None))],\n)");
+        assert!(
+            e.contains("timeline[0].at") && e.contains("after the end"),
+            "{e}"
+        );
+        let e = err(
+            "Scene(\n duration: 1.0,\n gains_file: \"g.ron\",\n gains: Gains(eye: (kp: 1.0, kd: 0.1), neck: (kp: 1.0, kd: 1.0), shoulder: (kp: 1.0, kd: 1.0), elbow: (kp: 1.0, kd: 1.0)),\n)",
+        );
+        assert!(e.starts_with("t.ron:3:") && e.contains("not both"), "{e}");
+        let e = err("Scene(duration: 1e12)");
+        assert!(e.contains("at most 86400"), "{e}");
+    }
+
+    #[test]
+    fn implausible_sizes_and_amounts_are_refused() {
+        for (text, field) in [
+            (
+                "Scene(duration: 1.0, vh: (vision: (field: (temporal_deg: 400.0))))",
+                "temporal_deg",
+            ),
+            (
+                "Scene(duration: 1.0, vh: (personality: (a_face: 1e30)))",
+                "a_face",
+            ),
+            (
+                "Scene(duration: 1.0, bodies: [(name: \"b\", shape: Ball(1e6), position: (0.0, 1.0, 1.0))])",
+                "shape",
+            ),
+        ] {
+            let e = err(text);
+            assert!(e.contains(field) && e.contains("must be"), "{e}");
+        }
     }
 }

@@ -81,10 +81,10 @@ impl Model {
 /// Shape of a prop.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 pub enum PropShape {
-    /// Sphere.
-    Ball(#[serde(deserialize_with = "crate::util::check::positive")] f64),
-    /// Box with half extents.
-    Box(#[serde(deserialize_with = "crate::util::check::vec3")] DVec3),
+    /// Sphere of this radius, m (1 mm to 5 m).
+    Ball(#[serde(deserialize_with = "prop_size")] f64),
+    /// Box with half extents, m (each 1 mm to 5 m).
+    Box(#[serde(deserialize_with = "prop_half_extents")] DVec3),
 }
 
 /// A prop declared by the scene.
@@ -116,6 +116,22 @@ pub struct BodySpec {
     /// Whether gravity acts on a dynamic prop.
     #[serde(default = "yes")]
     pub gravity: bool,
+}
+
+/// A prop's size, m: from a marble to a wall, not a planet.
+fn prop_size<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    crate::util::check::in_range(d, 0.001, 5.0)
+}
+
+fn prop_half_extents<'de, D: serde::Deserializer<'de>>(d: D) -> Result<DVec3, D::Error> {
+    use serde::de::Error;
+    let v = crate::util::check::vec3(d)?;
+    if v.min_element() < 0.001 || v.max_element() > 5.0 {
+        return Err(D::Error::custom(format!(
+            "half extents must be in [0.001, 5] m, got {v}"
+        )));
+    }
+    Ok(v)
 }
 
 fn default_mass() -> f64 {

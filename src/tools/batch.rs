@@ -303,6 +303,7 @@ mod tests {
                 resets: 0,
                 saccades: 0,
                 head_moves: 0,
+                interrupted: false,
             }),
             wall: 0.5,
         }

@@ -22,6 +22,8 @@ pub struct Report {
     pub saccades: u32,
     /// Head movements it started.
     pub head_moves: u32,
+    /// The run was stopped before its end (the verdicts judge what ran).
+    pub interrupted: bool,
 }
 
 impl Report {
@@ -39,6 +41,19 @@ pub fn run(
     trace: Option<&mut dyn Write>,
     every: u64,
 ) -> std::io::Result<Report> {
+    run_watched(scene, duration, trace, every, &mut |_| true)
+}
+
+/// [`run`], calling `keep_going(t)` every simulated second; it returns
+/// false to stop the run there (Ctrl-C), with the trace written so far
+/// intact and the report marked interrupted.
+pub fn run_watched(
+    scene: &LoadedScene,
+    duration: Option<f64>,
+    trace: Option<&mut dyn Write>,
+    every: u64,
+    keep_going: &mut dyn FnMut(f64) -> bool,
+) -> std::io::Result<Report> {
     let duration = duration.unwrap_or(scene.scene.duration);
     let mut sim = scene.sim();
     let mut checker = Checker::new(&scene.scene.expect, duration);
@@ -46,8 +61,13 @@ pub fn run(
         Some(w) => Some(TraceWriter::new(w, every)?),
         None => None,
     };
-    let ticks = (duration / DT).round() as u64;
-    for _ in 0..ticks {
+    let planned = (duration / DT).round() as u64;
+    let (mut ticks, mut interrupted) = (planned, false);
+    for k in 0..planned {
+        if k % 1000 == 0 && k > 0 && !keep_going(sim.time()) {
+            (ticks, interrupted) = (k, true);
+            break;
+        }
         let s = sim.step();
         checker.push(s);
         if let Some(w) = writer.as_mut() {
@@ -64,5 +84,6 @@ pub fn run(
         resets: sim.resets,
         saccades: sim.oculomotor.saccades,
         head_moves: sim.oculomotor.head_moves,
+        interrupted,
     })
 }

@@ -241,8 +241,9 @@ fn check(s: &Sample, sim: &Sim, failures: &mut Vec<String>) -> f64 {
 
 /// Spar for `minutes` of simulated time against a seeded random opponent,
 /// on the default scene's VH, checking invariants every tick. `progress`
-/// is called about once per simulated second with the fraction done.
-pub fn soak(minutes: f64, seed: u64, mut progress: impl FnMut(f64)) -> SoakReport {
+/// is called about once per simulated second with the fraction done; it
+/// returns false to stop the soak there (the report covers what ran).
+pub fn soak(minutes: f64, seed: u64, mut progress: impl FnMut(f64) -> bool) -> SoakReport {
     let mut loaded = LoadedScene::default_scene();
     loaded.scene.seed = seed;
     loaded.scene.timeline.clear();
@@ -261,7 +262,9 @@ pub fn soak(minutes: f64, seed: u64, mut progress: impl FnMut(f64)) -> SoakRepor
             .max(check(&s, &sim, &mut r.failures));
         r.head_hit_ticks += u64::from(s.head_hit);
         if i % 1000 == 0 {
-            progress(i as f64 / ticks as f64);
+            if !progress(i as f64 / ticks as f64) {
+                break;
+            }
             // Memory: measured after a warm-up minute, then at the end.
             if i == warm {
                 r.rss_kib.0 = rss_kib();
@@ -277,8 +280,8 @@ pub fn soak(minutes: f64, seed: u64, mut progress: impl FnMut(f64)) -> SoakRepor
             r.rss_kib.0, r.rss_kib.1
         ));
     }
-    r.sim_time = ticks as f64 * DT;
-    r.ticks = ticks;
+    r.sim_time = sim.time();
+    r.ticks = (sim.time() / DT).round() as u64;
     r.events = bot.events;
     r.vh_punches = sim.behaviour.punches_thrown;
     r.resets = sim.resets;

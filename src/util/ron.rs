@@ -10,12 +10,12 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 pub enum LoadError {
     /// The file could not be read.
-    #[error("{file}: {source}")]
+    #[error("{file}: {reason}")]
     Io {
         /// The file.
         file: String,
         /// The OS error.
-        source: std::io::Error,
+        reason: std::io::Error,
     },
     /// Syntax error, unknown field or invalid value.
     #[error("{file}:{line}:{col}: {field}: {message}")]
@@ -95,9 +95,34 @@ pub fn line_of(text: &str, needle: &str) -> (usize, usize) {
 }
 
 /// Read a whole text file, mapping failure to [`LoadError::Io`] naming it.
+/// (The OS error is the message, not a `source`, so a chain of errors
+/// prints it once.)
 pub fn read_text(path: &Path) -> Result<String, LoadError> {
     std::fs::read_to_string(path).map_err(|e| LoadError::Io {
         file: path.display().to_string(),
-        source: e,
+        reason: e,
     })
+}
+
+impl LoadError {
+    /// An unreadable file that another file names: reported at the naming
+    /// file's `line:col` and `field`, with the OS error once.
+    pub fn named_by(self, file: &Path, text: &str, needle: &str, field: &str) -> LoadError {
+        match self {
+            LoadError::Io {
+                file: missing,
+                reason,
+            } => {
+                let (line, col) = line_of(text, needle);
+                LoadError::Invalid {
+                    file: file.display().to_string(),
+                    line,
+                    col,
+                    field: field.to_string(),
+                    message: format!("cannot read {missing}: {reason}"),
+                }
+            }
+            other => other,
+        }
+    }
 }

@@ -55,7 +55,7 @@ pub enum Command {
         /// Run without a window (`run` never opens one; the flag is kept for scripts).
         #[arg(long)]
         headless: bool,
-        /// Write the trace (CSV) here.
+        /// Write the trace (CSV) here (`-`: standard output).
         #[arg(long)]
         trace: Option<PathBuf>,
         /// Write every Nth tick to the trace.
@@ -64,12 +64,16 @@ pub enum Command {
         /// Override the scene's seed.
         #[arg(long)]
         seed: Option<u64>,
-        /// Override the scene's duration, seconds.
+        /// Override the scene's duration, seconds (checked against the
+        /// scene's timeline and expectation windows).
         #[arg(long)]
         duration: Option<f64>,
         /// Also plot the run (gaze, eye and head angles) to this PNG.
         #[arg(long)]
         plot: Option<PathBuf>,
+        /// Allow a run longer than an hour of simulated time.
+        #[arg(long)]
+        force: bool,
     },
     /// Tune PD gains: step and trajectory experiments per joint group,
     /// metrics table, CSV and PNG plots; `--auto` improves the gains
@@ -175,6 +179,9 @@ pub enum Command {
         /// Seed of the opponent and the VH.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// Allow more than 600 simulated minutes.
+        #[arg(long)]
+        force: bool,
     },
     /// Write the VH and opponent bodies as an MJCF model (for the MuJoCo
     /// comparison in benches/mujoco_compare.py).
@@ -300,4 +307,24 @@ pub fn load(scene: &str) -> Result<LoadedScene> {
         return Ok(LoadedScene::default_scene());
     }
     Ok(LoadedScene::load(std::path::Path::new(scene))?)
+}
+
+impl Cli {
+    /// The first window option given, if any (they mean nothing to a
+    /// subcommand).
+    pub fn window_flag(&self) -> Option<&'static str> {
+        [
+            (self.scene.is_some(), "--scene"),
+            (self.bindings.is_some(), "--bindings"),
+            (self.exit_after.is_some(), "--exit-after"),
+            (self.screenshot.is_some(), "--screenshot"),
+            (self.panels, "--panels"),
+            (!self.open.is_empty(), "--open"),
+            (self.orbit, "--orbit"),
+            (self.overlays, "--overlays"),
+            (self.print_bindings, "--print-bindings"),
+        ]
+        .into_iter()
+        .find_map(|(set, name)| set.then_some(name))
+    }
 }

@@ -33,8 +33,15 @@ fn main() -> ExitCode {
             tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| "warn".into()),
         )
         .with_writer(std::io::stderr)
+        .with_ansi(std::io::IsTerminal::is_terminal(&std::io::stderr()))
         .init();
     let cli = Cli::parse();
+    if cli.command.is_some()
+        && let Some(flag) = cli.window_flag()
+    {
+        eprintln!("error: {flag} is an option of the window; it does nothing before a subcommand");
+        return ExitCode::from(2);
+    }
     match cli.command {
         None if cli.print_bindings => {
             print!("{}", shisen::input::DEFAULT_BINDINGS_RON);
@@ -57,6 +64,20 @@ fn main() -> ExitCode {
                 orbit: cli.orbit,
                 overlays: cli.overlays,
             };
+            // Bad input files are usage errors (2), as for every command,
+            // and are found before a window opens.
+            if let Some(p) = &opts.scene
+                && let Err(e) = shisen::scene::LoadedScene::load(p)
+            {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
+            if let Some(p) = &opts.bindings
+                && let Err(e) = shisen::input::Bindings::load(p)
+            {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
             match shisen::app::run(opts) {
                 Ok(()) => ExitCode::SUCCESS,
                 Err(e) => {
@@ -73,6 +94,7 @@ fn main() -> ExitCode {
             seed,
             duration,
             plot,
+            force,
         }) => match run(RunArgs {
             scene,
             trace,
@@ -80,9 +102,9 @@ fn main() -> ExitCode {
             seed,
             duration,
             plot,
+            force,
         }) {
-            Ok(true) => ExitCode::SUCCESS,
-            Ok(false) => ExitCode::from(1),
+            Ok(code) => code,
             Err(e) => {
                 eprintln!("error: {e:#}");
                 ExitCode::from(2)
@@ -146,7 +168,11 @@ fn main() -> ExitCode {
             )
             .with_context(|| format!("cannot write {}", out.display())),
         ),
-        Some(Command::Soak { minutes, seed }) => match soak_cmd(minutes, seed) {
+        Some(Command::Soak {
+            minutes,
+            seed,
+            force,
+        }) => match soak_cmd(minutes, seed, force) {
             Ok(true) => ExitCode::SUCCESS,
             Ok(false) => ExitCode::from(1),
             Err(e) => {

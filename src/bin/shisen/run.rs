@@ -2,9 +2,13 @@
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::OnceLock;
+use std::sync::atomic::{AtomicBool, Ordering};
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
+use shisen::scene::validate::check_duration;
 
 use shisen::render::{Headless, Overlays, View, write_png};
 use shisen::sim::DT;
@@ -23,11 +27,31 @@ pub fn render(
     if !(at.is_finite() && at >= 0.0) {
         anyhow::bail!("--at: must be a non-negative number of seconds, got {at}");
     }
+    if at > LONG_RUN {
+        anyhow::bail!("--at {at}: at most {LONG_RUN} s of simulated time");
+    }
+    if out
+        .extension()
+        .is_none_or(|e| !e.eq_ignore_ascii_case("png"))
+    {
+        anyhow::bail!("--out {}: must name a .png file", out.display());
+    }
     let loaded = load(scene)?;
     let mut sim = loaded.sim();
+    let stop = interrupt_flag();
+    let bar = progress(at, "s simulated");
+    let mut ticks = 0u64;
     while sim.time() + DT / 2.0 < at {
         sim.step();
+        ticks += 1;
+        if ticks.is_multiple_of(1000) {
+            bar.set_position(sim.time() as u64);
+            if stop.load(Ordering::Relaxed) {
+                anyhow::bail!("interrupted at {:.1} s; nothing written", sim.time());
+            }
+        }
     }
+    bar.finish_and_clear();
     let overlays = Overlays {
         gaze_rays: overlay.contains(&OverlayArg::Gaze),
         fov_cones: overlay.contains(&OverlayArg::Fov),
@@ -56,46 +80,91 @@ pub struct RunArgs {
     pub seed: Option<u64>,
     pub duration: Option<f64>,
     pub plot: Option<PathBuf>,
+    pub force: bool,
 }
 
-pub fn run(a: RunArgs) -> Result<bool> {
-    let RunArgs {
-        scene,
-        trace,
-        every,
-        seed,
-        duration,
-        plot,
-    } = a;
-    let scene = scene.as_str();
-    // A plot needs a trace; write one beside the plot if none was asked for.
-    let trace = trace.or_else(|| plot.as_ref().map(|p| p.with_extension("csv")));
-    let mut loaded = load(scene)?;
-    if let Some(s) = seed {
+/// Longest run (s of simulated time) made without `--force`: about two
+/// minutes of wall time on one core.
+pub const LONG_RUN: f64 = 3600.0;
+
+/// Exit code of a run stopped by Ctrl-C (the shell's 128 + SIGINT).
+pub const INTERRUPTED: u8 = 130;
+
+/// `shisen run`: 0 if every expectation holds, 1 if one fails, 130 if
+/// stopped by Ctrl-C; errors (exit 2) before anything is simulated.
+pub fn run(a: RunArgs) -> Result<ExitCode> {
+    // Every argument is checked before the simulation starts.
+    if let Some(p) = &a.plot
+        && p.extension().is_none_or(|e| !e.eq_ignore_ascii_case("png"))
+    {
+        bail!("--plot {}: must name a .png file", p.display());
+    }
+    if let Some(d) = a.duration
+        && !d.is_finite()
+    {
+        bail!("--duration: must be a number of seconds, got {d}");
+    }
+    let mut loaded = load(&a.scene)?;
+    if let Some(s) = a.seed {
         loaded.scene.seed = s;
     }
-    if let Some(d) = duration
-        && !(d.is_finite() && d > 0.0)
+    let duration = a.duration.unwrap_or(loaded.scene.duration);
+    if let Some(d) = a.duration
+        && let Err(m) = check_duration(&loaded.scene, d, false)
     {
-        anyhow::bail!("--duration: must be a positive number of seconds, got {d}");
+        bail!(
+            "--duration {d}: {}: {}: {}",
+            loaded.source,
+            m.field,
+            m.message
+        );
     }
-    let mut file = match &trace {
-        Some(p) => {
-            Some(BufWriter::new(File::create(p).with_context(|| {
-                format!("cannot create trace {}", p.display())
-            })?))
+    if duration > LONG_RUN && !a.force {
+        bail!(
+            "a {duration} s run is longer than {LONG_RUN} s of simulated time; pass --force to run it"
+        );
+    }
+    let stdout = a.trace.as_deref() == Some(Path::new("-"));
+    // A plot needs a trace: without one asked for, a temporary file (no
+    // file the user did not name is written or replaced).
+    let temp = (a.plot.is_some() && a.trace.is_none())
+        .then(|| std::env::temp_dir().join(format!("shisen-plot-{}.csv", std::process::id())));
+    let trace_path = a.trace.clone().filter(|_| !stdout).or(temp.clone());
+    let mut sink: Option<Box<dyn Write>> = if stdout {
+        Some(Box::new(BufWriter::new(std::io::stdout().lock())))
+    } else {
+        match &trace_path {
+            Some(p) => Some(Box::new(BufWriter::new(
+                File::create(p).with_context(|| format!("cannot create trace {}", p.display()))?,
+            ))),
+            None => None,
         }
-        None => None,
     };
+    // With the trace on standard output, the report goes to standard error.
+    let say = |line: String| {
+        if stdout {
+            eprintln!("{line}");
+        } else {
+            println!("{line}");
+        }
+    };
+    let stop = interrupt_flag();
+    let bar = progress(duration, "s simulated");
     let wall = std::time::Instant::now(); // reporting only; the model never reads it
-    let report = headless::run(
+    let report = headless::run_watched(
         &loaded,
-        duration,
-        file.as_mut().map(|f| f as &mut dyn Write),
-        every,
+        Some(duration),
+        sink.as_mut().map(|f| f as &mut dyn Write),
+        a.every,
+        &mut |t| {
+            bar.set_position(t as u64);
+            !stop.load(Ordering::Relaxed)
+        },
     )?;
+    bar.finish_and_clear();
+    drop(sink);
     let secs = wall.elapsed().as_secs_f64();
-    println!(
+    say(format!(
         "scene {} ({}), seed {}: {:.3} s simulated in {} ticks, {:.2} s wall ({:.1}x real time)",
         loaded.scene.name,
         loaded.source,
@@ -104,35 +173,86 @@ pub fn run(a: RunArgs) -> Result<bool> {
         report.ticks,
         secs,
         report.sim_time / secs.max(1e-9)
-    );
+    ));
+    if report.interrupted {
+        say(format!(
+            "interrupted at {:.3} s: the trace holds the run up to there; expectations not judged",
+            report.sim_time
+        ));
+        return Ok(ExitCode::from(INTERRUPTED));
+    }
     if report.resets > 0 {
-        println!(
+        say(format!(
             "warning: the physics blew up {} times; the VH was reset each time (trace column `reset`)",
             report.resets
-        );
+        ));
     }
     for v in &report.verdicts {
-        println!(
+        say(format!(
             "{}  {}: measured {}",
             if v.pass { "PASS" } else { "FAIL" },
             v.what,
             v.measured
-        );
+        ));
     }
-    if let (Some(p), Some(t)) = (&plot, &trace) {
-        drop(file);
-        shisen::tools::plot::plot_trace(t, p, (1400, 900))?;
-        println!("plot written to {}", p.display());
+    if let (Some(p), Some(t)) = (&a.plot, &trace_path) {
+        let r = shisen::tools::plot::plot_trace(t, p, (1400, 900));
+        if let Some(tmp) = &temp {
+            let _ = std::fs::remove_file(tmp);
+        }
+        r?;
+        say(format!("plot written to {}", p.display()));
     }
     let passed = report.verdicts.iter().filter(|v| v.pass).count();
-    println!("{passed} passed, {} failed", report.verdicts.len() - passed);
-    Ok(report.passed())
+    say(format!(
+        "{passed} passed, {} failed",
+        report.verdicts.len() - passed
+    ));
+    Ok(if report.passed() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
 }
 
-pub fn soak_cmd(minutes: f64, seed: u64) -> Result<bool> {
+/// A progress bar over `total` units, drawn (on standard error, only on
+/// a terminal) for runs long enough to need one.
+pub fn progress(total: f64, unit: &str) -> indicatif::ProgressBar {
+    if total < 60.0 {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(total as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(&format!(
+            "{{bar:40}} {{pos}}/{{len}} {unit}, {{elapsed}} elapsed, eta {{eta}} (Ctrl-C stops)"
+        ))
+        .expect("template"),
+    );
+    bar
+}
+
+/// Set when the user presses Ctrl-C (the handler is installed on first use).
+pub fn interrupt_flag() -> &'static AtomicBool {
+    static FLAG: OnceLock<&'static AtomicBool> = OnceLock::new();
+    FLAG.get_or_init(|| {
+        let flag: &'static AtomicBool = Box::leak(Box::new(AtomicBool::new(false)));
+        // Without a handler (another one installed) Ctrl-C just ends the process.
+        let _ = ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed));
+        flag
+    })
+}
+
+pub fn soak_cmd(minutes: f64, seed: u64, force: bool) -> Result<bool> {
     if !(minutes.is_finite() && minutes > 0.0) {
         anyhow::bail!("--minutes: must be a positive number, got {minutes}");
     }
+    if minutes > LONG_RUN / 60.0 * 10.0 && !force {
+        anyhow::bail!(
+            "--minutes {minutes}: more than {} simulated minutes; pass --force to run it",
+            LONG_RUN / 6.0
+        );
+    }
+    let stop = interrupt_flag();
     let bar = indicatif::ProgressBar::new(1000);
     bar.set_style(
         indicatif::ProgressStyle::with_template(
@@ -141,7 +261,10 @@ pub fn soak_cmd(minutes: f64, seed: u64) -> Result<bool> {
         .expect("template"),
     );
     let wall = std::time::Instant::now(); // reporting only
-    let r = shisen::tools::soak::soak(minutes, seed, |f| bar.set_position((f * 1000.0) as u64));
+    let r = shisen::tools::soak::soak(minutes, seed, |f| {
+        bar.set_position((f * 1000.0) as u64);
+        !stop.load(Ordering::Relaxed)
+    });
     bar.finish_and_clear();
     let secs = wall.elapsed().as_secs_f64();
     println!(
@@ -161,6 +284,9 @@ pub fn soak_cmd(minutes: f64, seed: u64) -> Result<bool> {
     );
     for f in &r.failures {
         println!("  FAIL {f}");
+    }
+    if stop.load(Ordering::Relaxed) {
+        println!("  interrupted: the figures cover the minutes simulated");
     }
     println!(
         "  invariants {}",

@@ -19,6 +19,9 @@ pub fn tune_cmd(
     out: &std::path::Path,
     dt: f64,
 ) -> Result<()> {
+    if from_guess && !auto {
+        anyhow::bail!("--from-guess starts the automatic tuning; give --auto with it");
+    }
     use shisen::tools::tune;
     if !(dt.is_finite() && dt > 0.0 && dt <= 0.01) {
         anyhow::bail!("--dt: must be in (0, 0.01] s, got {dt}");
