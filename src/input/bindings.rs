@@ -46,11 +46,14 @@ pub struct PadAxes {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Bindings {
-    /// Key name (egui's: `A`, `ArrowLeft`, `Space`, `F1`, ...) to command.
+    /// Key name (egui's: `A`, `ArrowLeft`, `Space`, `F1`, ...) to command;
+    /// each key once.
+    #[serde(deserialize_with = "crate::util::check::unique_keys")]
     pub keys: BTreeMap<String, Command>,
     /// Mouse buttons.
     pub mouse: MouseBindings,
-    /// Gamepad buttons.
+    /// Gamepad buttons, each once.
+    #[serde(deserialize_with = "crate::util::check::unique_keys")]
     pub pad_buttons: BTreeMap<PadButton, Command>,
     /// Gamepad sticks and triggers.
     pub pad_axes: PadAxes,
@@ -152,5 +155,19 @@ mod tests {
         let text = DEFAULT_BINDINGS_RON.replacen("\"A\"", "\"NotAKey\"", 1);
         let e = Bindings::parse(&text, Path::new("b.ron")).unwrap_err();
         assert!(e.to_string().contains("NotAKey"), "{e}");
+    }
+
+    #[test]
+    fn a_key_bound_twice_is_an_error() {
+        let text = DEFAULT_BINDINGS_RON.replacen(
+            "keys: {",
+            "keys: {\n        \"Space\": Duck,\n        \"Space\": Duck,",
+            1,
+        );
+        assert_ne!(text, DEFAULT_BINDINGS_RON);
+        let e = Bindings::parse(&text, Path::new("b.ron"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("b.ron:") && e.contains("twice"), "{e}");
     }
 }

@@ -84,6 +84,17 @@ pub fn tune_cmd(
         tune::plot_responses(&png, group, &runs)?;
     }
     if let Some(p) = write_gains {
+        // Six significant digits: the tuning is not finer than that, and
+        // a file of 0.03266999982542984 reads as noise.
+        let mut g = g.clone();
+        for group in Group::ALL {
+            let jg = g.group_mut(group);
+            for x in [&mut jg.kp, &mut jg.kd, &mut jg.feedforward] {
+                *x = format!("{:.5e}", *x)
+                    .parse()
+                    .expect("a formatted number parses");
+            }
+        }
         let text = ron::ser::to_string_pretty(&g, ron::ser::PrettyConfig::default())?;
         std::fs::write(&p, format!("// Written by `shisen tune`.\n{text}\n"))
             .with_context(|| format!("cannot write {}", p.display()))?;

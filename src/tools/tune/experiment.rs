@@ -40,6 +40,17 @@ pub enum Experiment {
     },
 }
 
+impl std::fmt::Display for Experiment {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Experiment::Step { amplitude_deg } => write!(f, "step {amplitude_deg} deg"),
+            Experiment::Saccade { amplitude_deg } => write!(f, "saccade {amplitude_deg} deg"),
+            Experiment::MinJerk { amplitude_deg } => write!(f, "min-jerk {amplitude_deg} deg"),
+            Experiment::Ramp { rate_deg_s } => write!(f, "ramp {rate_deg_s} deg/s"),
+        }
+    }
+}
+
 /// The joint a group is tuned on and its main axis.
 pub(super) fn joint_of(group: Group) -> usize {
     match group {
@@ -100,15 +111,23 @@ impl Report {
             None => "stable".to_string(),
             Some(i) => format!("UNSTABLE ({i:?})"),
         };
+        // Tracking errors are measured on trajectories only; a step has none.
+        let deg = |x: f64| {
+            if x.is_nan() {
+                format!("{:>6}    ", "-")
+            } else {
+                format!("{x:>6.3} deg")
+            }
+        };
         format!(
-            "{:<34} rise {:>6.1} ms  overshoot {:>5.1} %  settle {:>6.1} ms  sse {:>6.3} deg  rms {:>6.3} deg  peak {:>6.3} deg  {stab}",
-            format!("{:?}", self.experiment),
+            "{:<20} rise {:>6.1} ms  overshoot {:>5.1} %  settle {:>6.1} ms  sse {:>6.3} deg  rms {}  peak {}  {stab}",
+            self.experiment.to_string(),
             self.rise_time * 1e3,
             self.overshoot * 100.0,
             self.settling_time * 1e3,
             self.steady_state_deg,
-            self.rms_deg,
-            self.peak_deg
+            deg(self.rms_deg),
+            deg(self.peak_deg)
         )
     }
 }
