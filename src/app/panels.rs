@@ -346,12 +346,15 @@ fn gains(ui: &mut egui::Ui, s: &mut Session, st: &mut PanelState) {
         ui.text_edit_singleline(&mut st.gains_path);
         if ui.button("Load gains").clicked() {
             let p = std::path::PathBuf::from(&st.gains_path);
-            match crate::physics::control::Gains::load(&p) {
+            let loaded = crate::physics::control::Gains::load(&p)
+                .map_err(|e| e.to_string())
+                .and_then(|g| crate::physics::world::check_gains(&g).map(|()| g));
+            match loaded {
                 Ok(g) => {
                     s.sim.edit_params(|m| m.gains = g);
                     st.say(format!("gains from {}", p.display()), false);
                 }
-                Err(e) => st.say(format!("{e}"), true),
+                Err(e) => st.say(e, true),
             }
         }
     });

@@ -67,6 +67,26 @@ pub enum Group {
 impl Group {
     /// Every group, in file order.
     pub const ALL: [Group; 4] = [Group::Eye, Group::Neck, Group::Shoulder, Group::Elbow];
+
+    /// The segment whose joint stands for the group (the left one of a pair).
+    pub fn joint(self) -> usize {
+        match self {
+            Group::Eye => seg::EYE_L,
+            Group::Neck => seg::HEAD,
+            Group::Shoulder => seg::UPPER_ARM_L,
+            Group::Elbow => seg::FOREARM_L,
+        }
+    }
+
+    /// The group's main axis, 0 yaw or 1 pitch: yaw for the eyes; pitch
+    /// for the neck (its larger, gravity-loaded inertia: yaw, 8x lighter,
+    /// is then simply better damped) and flexion for shoulder and elbow.
+    pub fn main_axis(self) -> usize {
+        match self {
+            Group::Eye => 0,
+            Group::Neck | Group::Shoulder | Group::Elbow => 1,
+        }
+    }
 }
 
 /// One rigid segment of the virtual human.

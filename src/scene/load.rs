@@ -62,8 +62,22 @@ impl LoadedScene {
         let resolve = |rel: &Path| dir.map_or(rel.to_path_buf(), |d| d.join(rel));
         let gains = match (&scene.gains, &scene.gains_file) {
             (Some(g), _) => g.clone(),
-            (None, Some(rel)) => Gains::load(&resolve(rel))
-                .map_err(|e| e.named_by(file, text, "gains_file", "gains_file"))?,
+            (None, Some(rel)) => {
+                let path = resolve(rel);
+                let g = Gains::load(&path)
+                    .map_err(|e| e.named_by(file, text, "gains_file", "gains_file"))?;
+                if let Err(m) = crate::physics::world::check_gains(&g) {
+                    let (field, why) = m.split_once(": ").unwrap_or(("-", &m));
+                    return Err(LoadError::Invalid {
+                        file: path.display().to_string(),
+                        line: 1,
+                        col: 1,
+                        field: field.to_string(),
+                        message: why.to_string(),
+                    });
+                }
+                g
+            }
             (None, None) => Gains::default(),
         };
         expand_scripts(&mut scene, &resolve, text, file)?;

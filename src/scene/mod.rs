@@ -203,4 +203,33 @@ mod tests {
             assert!(e.contains(field) && e.contains("must be"), "{e}");
         }
     }
+
+    #[test]
+    fn shipped_gains_are_plausible_and_absurd_ones_are_not() {
+        crate::physics::world::check_gains(&crate::physics::control::Gains::default()).unwrap();
+        let e = err(
+            "Scene(\n duration: 1.0,\n gains: Gains(eye: (kp: 1e9, kd: 0.1), neck: (kp: 1.0, kd: 1.0), shoulder: (kp: 1.0, kd: 1.0), elbow: (kp: 1.0, kd: 1.0)),\n)",
+        );
+        assert!(
+            e.starts_with("t.ron:3:") && e.contains("gains.eye.kp"),
+            "{e}"
+        );
+        assert!(e.contains("natural frequency"), "{e}");
+    }
+
+    #[test]
+    fn syntax_errors_name_the_field_and_the_likely_cause() {
+        let e = err("Scene(\n    duration: 1.0,\n    seed: 1.5,\n)");
+        assert!(
+            e.starts_with("t.ron:3:") && e.contains("seed:") && e.contains("whole number"),
+            "{e}"
+        );
+        let e = err(
+            "Scene(\n duration: 1.0,\n timeline: [\n  (at: 0.5, do: Occlude(eye: None),\n ],\n)",
+        );
+        assert!(
+            e.contains("timeline[0]:") && !e.contains(".?") && e.contains("missing"),
+            "{e}"
+        );
+    }
 }

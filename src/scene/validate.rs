@@ -6,6 +6,7 @@ use std::path::Path;
 
 use super::format::Scene;
 use crate::physics::body::BodyPlan;
+use crate::physics::world::check_gains;
 use crate::sim::DT;
 use crate::sim::expect::Expect;
 use crate::sim::timeline::{Action, Part};
@@ -29,6 +30,12 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
             "gains_file".into(),
             "give either `gains` or `gains_file`, not both".into(),
         ));
+    }
+    if let Some(g) = &scene.gains
+        && let Err(m) = check_gains(g)
+    {
+        let (field, why) = m.split_once(": ").unwrap_or(("", &m));
+        return Err(err("gains", format!("gains.{field}"), why.to_string()));
     }
     if let Err(m) = check_duration(scene, scene.duration, true) {
         return Err(err(m.needle, m.field, m.message));

@@ -59,13 +59,17 @@ pub fn parse_ron<T: DeserializeOwned>(text: &str, file: &Path) -> Result<T, Load
         Err(err) => {
             let path = err.path().to_string();
             let spanned = de.span_error(err.into_inner());
-            let field = if path == "." { "-".to_string() } else { path };
-            return Err(invalid(
-                spanned.span.start.line,
-                spanned.span.start.col,
-                field,
-                spanned.code.to_string(),
-            ));
+            let (line, col) = (spanned.span.start.line, spanned.span.start.col);
+            // The path ends in `?` where the parser had not yet read a field
+            // name (a syntax error): name the enclosing field instead.
+            let field = path.trim_end_matches('?').trim_end_matches('.');
+            let field = match (field.is_empty(), key_on_line(text, line)) {
+                (true, Some(key)) => key,
+                (true, None) => "-".to_string(),
+                (false, _) => field.to_string(),
+            };
+            let message = explain(&spanned.code.to_string(), text, line, col);
+            return Err(invalid(line, col, field, message));
         }
     };
     de.end().map_err(|e| {
@@ -78,6 +82,32 @@ pub fn parse_ron<T: DeserializeOwned>(text: &str, file: &Path) -> Result<T, Load
         )
     })?;
     Ok(value)
+}
+
+/// The `key` of a line written `key: value`, if it is one.
+fn key_on_line(text: &str, line: usize) -> Option<String> {
+    let l = text.lines().nth(line.saturating_sub(1))?.trim_start();
+    let (key, _) = l.split_once(':')?;
+    (!key.is_empty() && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
+        .then(|| key.to_string())
+}
+
+/// A parser message with a hint where the usual cause is plain: a
+/// fraction where a whole number belongs (`seed: 1.5` reads `1`, then
+/// trips on `.5`), or a bracket left open on the line before.
+fn explain(message: &str, text: &str, line: usize, col: usize) -> String {
+    let rest = text
+        .lines()
+        .nth(line.saturating_sub(1))
+        .and_then(|l| l.get(col.saturating_sub(1)..))
+        .unwrap_or("");
+    if message == "Expected comma" && rest.starts_with('.') {
+        return format!("{message}: a whole number is expected here, not a fraction");
+    }
+    if message.starts_with("Expected identifier") || message.starts_with("Unexpected closing") {
+        return format!("{message} (is a `)` or `]` missing before this?)");
+    }
+    message.to_string()
 }
 
 /// 1-based line of the first occurrence of `needle` in `text` (for errors

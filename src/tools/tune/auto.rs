@@ -1,13 +1,11 @@
 //! Tuning objectives, a physically based first guess and automatic
 //! improvement of one group's gains.
 
-use glam::Vec3;
 use rayon::prelude::*;
 
 use super::experiment::*;
-use crate::physics::body::{BodyPlan, Group};
+use crate::physics::body::Group;
 use crate::physics::control::{Gains, JointGains};
-use crate::physics::world::World;
 
 /// The tuning objective of a group: the trajectory it must track and the
 /// bounds (RMS tracking error, step overshoot).
@@ -123,15 +121,7 @@ pub fn score(group: Group, gains: &Gains, dt: f64) -> Score {
 /// The effective inertia of a group's joint about its main axis at rest,
 /// kg m^2 (from the physics model's mass properties).
 pub fn effective_inertia(group: Group) -> f64 {
-    let world = World::new(BodyPlan::default(), 0.001);
-    let j = joint_of(group);
-    let i = world.subtree_inertia(j, world.pivot(j));
-    let axis = if main_axis(group) == 0 {
-        Vec3::Y
-    } else {
-        Vec3::X
-    };
-    (axis.dot(i * axis)) as f64
+    crate::physics::world::group_inertia(group)
 }
 
 /// The physically based starting guess: critically damped gains for the

@@ -9,7 +9,7 @@ use serde::Serialize;
 use crate::agent::oculomotor::AxisCommand;
 use crate::agent::oculomotor::head::HeadParams;
 use crate::agent::oculomotor::saccade::{SaccadeParams, SaccadeProfile};
-use crate::physics::body::{BodyPlan, Group, seg};
+use crate::physics::body::{BodyPlan, Group};
 use crate::physics::control::{Gains, JointTarget};
 use crate::physics::world::World;
 use crate::tools::metrics::{Instability, StepMetrics, instability, step_metrics, tracking_error};
@@ -48,26 +48,6 @@ impl std::fmt::Display for Experiment {
             Experiment::MinJerk { amplitude_deg } => write!(f, "min-jerk {amplitude_deg} deg"),
             Experiment::Ramp { rate_deg_s } => write!(f, "ramp {rate_deg_s} deg/s"),
         }
-    }
-}
-
-/// The joint a group is tuned on and its main axis.
-pub(super) fn joint_of(group: Group) -> usize {
-    match group {
-        Group::Eye => seg::EYE_L,
-        Group::Neck => seg::HEAD,
-        Group::Shoulder => seg::UPPER_ARM_L,
-        Group::Elbow => seg::FOREARM_L,
-    }
-}
-
-/// Angle on the group's main axis: yaw for the eyes; pitch for the neck
-/// (its larger, gravity-loaded inertia: yaw, 8x lighter, is then simply
-/// better damped) and flexion for shoulder and elbow.
-pub(super) fn main_axis(group: Group) -> usize {
-    match group {
-        Group::Eye => 0,
-        Group::Neck | Group::Shoulder | Group::Elbow => 1,
     }
 }
 
@@ -137,8 +117,8 @@ impl Report {
 /// on its main axis (plus a 0.1 s lead-in and a hold afterwards).
 pub fn run(group: Group, exp: Experiment, gains: &Gains, dt: f64) -> Response {
     let mut world = World::new(BodyPlan::default(), dt);
-    let joint = joint_of(group);
-    let axis = main_axis(group);
+    let joint = group.joint();
+    let axis = group.main_axis();
     let n = world.plan.segments.len();
     let mut targets = vec![JointTarget::default(); n];
     let reference = reference_fn(exp);
