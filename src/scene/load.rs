@@ -177,7 +177,16 @@ fn load_face(
             let p = resolve(rel);
             let t = crate::util::ron::read_text(&p)
                 .map_err(|e| e.named_by(file, text, "database", "vh.face.database"))?;
-            FaceParams::parse(&t, &p).map_err(face_err)?
+            FaceParams::parse(&t, &p).map_err(|e| match e {
+                crate::face::FaceError::Invalid(m) => LoadError::Invalid {
+                    file: p.display().to_string(),
+                    line: 1,
+                    col: 1,
+                    field: "-".into(),
+                    message: format!("implausible muscle database: {m}"),
+                },
+                other => face_err(other),
+            })?
         }
         None => FaceParams::default_params(),
     };
