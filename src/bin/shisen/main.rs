@@ -28,6 +28,17 @@ fn report(r: Result<()>) -> ExitCode {
 }
 
 fn main() -> ExitCode {
+    let cli = Cli::parse();
+    if matches!(cli.command, Some(Command::Render { .. }))
+        && std::env::var_os("XDG_RUNTIME_DIR").is_none()
+        && std::env::var_os("NODEVICE_SELECT").is_none()
+    {
+        // Offscreen rendering needs no display; without one, Mesa's implicit
+        // device-select Vulkan layer still probes Wayland and prints an
+        // "XDG_RUNTIME_DIR is invalid" error on success. Turn it off.
+        // SAFETY: first thing in main, before any other thread exists.
+        unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
+    }
     tracing_subscriber::fmt()
         .with_env_filter(
             tracing_subscriber::EnvFilter::try_from_default_env().unwrap_or_else(|_| "warn".into()),
@@ -35,7 +46,6 @@ fn main() -> ExitCode {
         .with_writer(std::io::stderr)
         .with_ansi(std::io::IsTerminal::is_terminal(&std::io::stderr()))
         .init();
-    let cli = Cli::parse();
     if cli.command.is_some()
         && let Some(flag) = cli.window_flag()
     {
