@@ -80,14 +80,18 @@ fn half_field<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
     crate::util::check::in_range(d, 0.0, 180.0)
 }
 
+fn sight_distance<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    crate::util::check::in_range(d, 0.01, 1000.0)
+}
+
 /// Vision and saliency parameters (scene `vh.vision`).
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct VisionParams {
     /// Per-eye field (the same numbers mirrored for the two eyes).
     pub field: FieldOfView,
-    /// Bodies farther than this are not seen, m.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Bodies farther than this are not seen, m (0.01-1000).
+    #[serde(deserialize_with = "sight_distance")]
     pub max_distance: f64,
     /// Whether the VH sees its own body parts.
     pub see_self: bool,

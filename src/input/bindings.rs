@@ -38,8 +38,14 @@ pub struct PadAxes {
     pub left_throw: Trigger,
     /// Trigger pushing your right glove forward.
     pub right_throw: Trigger,
-    /// Stick deflection below this is ignored (0-1).
+    /// Stick deflection below this is ignored (0-0.9: a larger dead zone
+    /// leaves no travel).
+    #[serde(deserialize_with = "dead_zone")]
     pub dead_zone: f32,
+}
+
+fn dead_zone<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
+    crate::util::check::in_range(d, 0.0, 0.9).map(|v| v as f32)
 }
 
 /// All bindings.

@@ -96,7 +96,7 @@ pub struct BodySpec {
     /// Shape.
     pub shape: PropShape,
     /// Initial position, world metres.
-    #[serde(deserialize_with = "crate::util::check::vec3")]
+    #[serde(deserialize_with = "crate::util::check::position")]
     pub position: DVec3,
     /// Initial velocity (dynamic props), m/s.
     #[serde(default, deserialize_with = "crate::util::check::vec3")]

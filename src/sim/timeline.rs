@@ -52,7 +52,7 @@ pub enum PunchTarget {
     /// The VH's torso.
     Body,
     /// A world point.
-    Point(#[serde(deserialize_with = "crate::util::check::vec3")] DVec3),
+    Point(#[serde(deserialize_with = "crate::util::check::position")] DVec3),
 }
 
 /// Something that happens at a time in the scene.
@@ -63,7 +63,7 @@ pub enum Action {
         /// What moves.
         part: Part,
         /// Destination, world metres.
-        #[serde(deserialize_with = "crate::util::check::vec3")]
+        #[serde(deserialize_with = "crate::util::check::position")]
         to: DVec3,
         /// Duration, seconds.
         #[serde(deserialize_with = "crate::util::check::positive")]
@@ -84,7 +84,7 @@ pub enum Action {
         /// What waves.
         part: Part,
         /// Peak displacement along each axis, metres.
-        #[serde(deserialize_with = "crate::util::check::vec3")]
+        #[serde(deserialize_with = "crate::util::check::position")]
         amplitude: DVec3,
         /// Frequency, Hz.
         #[serde(deserialize_with = "crate::util::check::positive")]
@@ -121,7 +121,7 @@ pub enum Action {
     /// Override the gaze: look at a world point until a time.
     LookAt {
         /// The point, world metres.
-        #[serde(deserialize_with = "crate::util::check::vec3")]
+        #[serde(deserialize_with = "crate::util::check::position")]
         point: DVec3,
         /// End of the override, seconds.
         #[serde(deserialize_with = "crate::util::check::non_negative")]
@@ -152,7 +152,7 @@ pub enum Action {
         /// What moves.
         part: Part,
         /// Centre of the circle, world metres.
-        #[serde(deserialize_with = "crate::util::check::vec3")]
+        #[serde(deserialize_with = "crate::util::check::position")]
         centre: DVec3,
         /// Angular speed about +Y (positive: toward the VH's left), deg/s.
         #[serde(deserialize_with = "crate::util::check::finite")]

@@ -73,6 +73,23 @@ pub fn opt_non_negative<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, 
     non_negative(d).map(Some)
 }
 
+/// Largest distance from the origin a position may have on any axis, m:
+/// the sparring room is a few metres across; this leaves room for props
+/// thrown far, not for typos such as 1e6.
+pub const MAX_POSITION: f64 = 100.0;
+
+/// A point in the sparring room: a [`vec3`] with every component within
+/// [`MAX_POSITION`] metres of the origin.
+pub fn position<'de, D: Deserializer<'de>>(d: D) -> Result<glam::DVec3, D::Error> {
+    let v = vec3(d)?;
+    if v.abs().max_element() > MAX_POSITION {
+        return Err(D::Error::custom(format!(
+            "must be within {MAX_POSITION} m of the origin on each axis, got {v}"
+        )));
+    }
+    Ok(v)
+}
+
 /// A map whose keys must each appear once (serde's maps keep the last of
 /// a repeated key silently; in a bindings file that hides a mistake).
 pub fn unique_keys<'de, D, K, V>(d: D) -> Result<std::collections::BTreeMap<K, V>, D::Error>
