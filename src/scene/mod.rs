@@ -195,6 +195,14 @@ mod tests {
                 "a_face",
             ),
             (
+                "Scene(duration: 1.0, timeline: [(at: 0.0, do: Move(part: LeftGlove, to: (1e6, 1.0, 1.0), duration: 0.5))])",
+                "timeline[0].do.Move.to",
+            ),
+            (
+                "Scene(duration: 1.0, vh: (vision: (max_distance: 1e9)))",
+                "max_distance",
+            ),
+            (
                 "Scene(duration: 1.0, bodies: [(name: \"b\", shape: Ball(1e6), position: (0.0, 1.0, 1.0))])",
                 "shape",
             ),
