@@ -348,7 +348,11 @@ fn gains(ui: &mut egui::Ui, s: &mut Session, st: &mut PanelState) {
             let p = std::path::PathBuf::from(&st.gains_path);
             let loaded = crate::physics::control::Gains::load(&p)
                 .map_err(|e| e.to_string())
-                .and_then(|g| crate::physics::world::check_gains(&g).map(|()| g));
+                .and_then(|g| {
+                    crate::physics::world::check_gains(&g)
+                        .map(|()| g)
+                        .map_err(|m| m.to_string())
+                });
             match loaded {
                 Ok(g) => {
                     s.sim.edit_params(|m| m.gains = g);

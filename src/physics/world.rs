@@ -502,29 +502,44 @@ pub const MAX_DAMPING_RATE: f64 = 2.0 * MAX_NATURAL_FREQUENCY;
 /// frequency and damping rate within the bounds above. The stable PD law
 /// takes any non-negative gains, but past these a joint is a rigid weld
 /// computed in single precision, and rapier blows up.
-pub fn check_gains(gains: &Gains) -> Result<(), String> {
+pub fn check_gains(gains: &Gains) -> Result<(), GainsError> {
     for g in Group::ALL {
         let (jg, i) = (gains.group(g), group_inertia(g));
+        let group = format!("{g:?}").to_lowercase();
         let omega = (jg.kp / i).sqrt();
         if omega > MAX_NATURAL_FREQUENCY {
-            return Err(format!(
-                "{}.kp: {} gives a natural frequency of {omega:.0} rad/s on the joint's {i:.3e} kg m^2; at most {MAX_NATURAL_FREQUENCY} (kp <= {:.4e})",
-                format!("{g:?}").to_lowercase(),
-                jg.kp,
-                i * MAX_NATURAL_FREQUENCY * MAX_NATURAL_FREQUENCY
-            ));
+            return Err(GainsError {
+                field: format!("{group}.kp"),
+                message: format!(
+                    "{} gives a natural frequency of {omega:.0} rad/s on the joint's {i:.3e} kg m^2; at most {MAX_NATURAL_FREQUENCY} (kp <= {:.4e})",
+                    jg.kp,
+                    i * MAX_NATURAL_FREQUENCY * MAX_NATURAL_FREQUENCY
+                ),
+            });
         }
         if jg.kd / i > MAX_DAMPING_RATE {
-            return Err(format!(
-                "{}.kd: {} gives a damping rate of {:.0} 1/s on the joint's {i:.3e} kg m^2; at most {MAX_DAMPING_RATE} (kd <= {:.4e})",
-                format!("{g:?}").to_lowercase(),
-                jg.kd,
-                jg.kd / i,
-                i * MAX_DAMPING_RATE
-            ));
+            return Err(GainsError {
+                field: format!("{group}.kd"),
+                message: format!(
+                    "{} gives a damping rate of {:.0} 1/s on the joint's {i:.3e} kg m^2; at most {MAX_DAMPING_RATE} (kd <= {:.4e})",
+                    jg.kd,
+                    jg.kd / i,
+                    i * MAX_DAMPING_RATE
+                ),
+            });
         }
     }
     Ok(())
+}
+
+/// Implausible gains: the field (`eye.kp`) and why.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{field}: {message}")]
+pub struct GainsError {
+    /// The field, relative to the gains (`eye.kp`).
+    pub field: String,
+    /// What is wrong.
+    pub message: String,
 }
 
 /// Vision's view of the physics world: rapier bodies, eye segments and ray

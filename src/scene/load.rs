@@ -67,13 +67,12 @@ impl LoadedScene {
                 let g = Gains::load(&path)
                     .map_err(|e| e.named_by(file, text, "gains_file", "gains_file"))?;
                 if let Err(m) = crate::physics::world::check_gains(&g) {
-                    let (field, why) = m.split_once(": ").unwrap_or(("-", &m));
                     return Err(LoadError::Invalid {
                         file: path.display().to_string(),
                         line: 1,
                         col: 1,
-                        field: field.to_string(),
-                        message: why.to_string(),
+                        field: m.field,
+                        message: m.message,
                     });
                 }
                 g

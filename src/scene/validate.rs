@@ -6,7 +6,7 @@ use std::path::Path;
 
 use super::format::Scene;
 use crate::physics::body::BodyPlan;
-use crate::physics::world::check_gains;
+use crate::physics::world::{check_gains, opp};
 use crate::sim::DT;
 use crate::sim::expect::Expect;
 use crate::sim::timeline::{Action, Part};
@@ -34,8 +34,7 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
     if let Some(g) = &scene.gains
         && let Err(m) = check_gains(g)
     {
-        let (field, why) = m.split_once(": ").unwrap_or(("", &m));
-        return Err(err("gains", format!("gains.{field}"), why.to_string()));
+        return Err(err("gains", format!("gains.{}", m.field), m.message));
     }
     if let Err(m) = check_duration(scene, scene.duration, true) {
         return Err(err(m.needle, m.field, m.message));
@@ -51,7 +50,7 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
     if let Err(m) = scene.vh.oculomotor.pursuit.validate() {
         return Err(err("pursuit", "vh.oculomotor.pursuit".into(), m));
     }
-    let mut names: Vec<&str> = vec!["head", "left_glove", "right_glove"];
+    let mut names: Vec<&str> = opp::NAMES.to_vec();
     for (i, b) in scene.bodies.iter().enumerate() {
         if names.contains(&b.name.as_str()) || b.name.starts_with("vh_") || b.name == "point" {
             return Err(err(
@@ -168,7 +167,7 @@ pub fn check_duration(scene: &Scene, duration: f64, events: bool) -> Result<(), 
             message,
         })
     };
-    if duration < DT {
+    if !duration.is_finite() || duration < DT {
         return bad(
             "duration",
             "duration".into(),
@@ -192,18 +191,7 @@ pub fn check_duration(scene: &Scene, duration: f64, events: bool) -> Result<(), 
         }
     }
     for (i, x) in scene.expect.iter().enumerate() {
-        let window = match x {
-            Expect::GazeShare { from, to, .. }
-            | Expect::GazeShareAtMost { from, to, .. }
-            | Expect::GazeReaches { from, to, .. }
-            | Expect::LineOfSight { from, to, .. }
-            | Expect::AngleReaches { from, to, .. }
-            | Expect::ActionShare { from, to, .. } => Some((*from, *to)),
-            Expect::AngleBelow { from, to, .. } => {
-                Some((from.unwrap_or(0.0), to.unwrap_or(duration)))
-            }
-            Expect::Finite | Expect::Telegraph { .. } => None,
-        };
+        let window = x.window(duration);
         if let Some((from, to)) = window
             && (to < from || to > duration + 1e-9)
         {

@@ -169,6 +169,25 @@ struct Acc {
     punching: bool,
 }
 
+impl Expect {
+    /// The time window the expectation judges in a run of `duration`
+    /// seconds (`AngleBelow` defaults to the whole run), if it has one.
+    pub fn window(&self, duration: f64) -> Option<(f64, f64)> {
+        match self {
+            Expect::GazeShare { from, to, .. }
+            | Expect::GazeShareAtMost { from, to, .. }
+            | Expect::GazeReaches { from, to, .. }
+            | Expect::LineOfSight { from, to, .. }
+            | Expect::AngleReaches { from, to, .. }
+            | Expect::ActionShare { from, to, .. } => Some((*from, *to)),
+            Expect::AngleBelow { from, to, .. } => {
+                Some((from.unwrap_or(0.0), to.unwrap_or(duration)))
+            }
+            Expect::Finite | Expect::Telegraph { .. } => None,
+        }
+    }
+}
+
 /// Accumulates samples for every expectation of a scene.
 pub struct Checker {
     expects: Vec<Expect>,

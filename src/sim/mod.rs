@@ -181,11 +181,6 @@ impl Sim {
         &self.seen
     }
 
-    /// Body names, indexed like [`World::bodies`].
-    pub fn names(&self) -> &[String] {
-        &self.names
-    }
-
     /// The kinematic track of a body, if it has one.
     pub fn track_mut(&mut self, body: usize) -> Option<&mut Track> {
         self.timeline.track_mut(body)

@@ -16,6 +16,7 @@ use rayon::prelude::*;
 
 use crate::scene::LoadedScene;
 use crate::tools::headless::{self, Report};
+use crate::tools::parallel;
 use crate::tools::table::Shard;
 
 /// The scene files named by `paths`: files as given, folders by the
@@ -102,16 +103,8 @@ pub fn run_scenes(
         .filter(|(k, _)| shard.contains(*k))
         .map(|(_, f)| f)
         .collect();
-    let bar = indicatif::ProgressBar::new(mine.len() as u64);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} scenes, {elapsed} {msg}")
-            .expect("template"),
-    );
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(jobs.max(1))
-        .build()
-        .expect("thread pool");
-    let runs = pool.install(|| {
+    let bar = parallel::bar(mine.len() as u64, "scenes");
+    let runs = parallel::pool(jobs).install(|| {
         mine.par_iter()
             .map(|f| {
                 let r = run_one(f, out);
@@ -189,7 +182,7 @@ pub fn junit(runs: &[SceneRun]) -> String {
 }
 
 /// One scene as a `<testsuite>` element.
-pub fn junit_suite(r: &SceneRun) -> String {
+fn junit_suite(r: &SceneRun) -> String {
     let name = xml(&r.name);
     let file = xml(&r.path.display().to_string());
     let mut s = String::new();

@@ -12,6 +12,8 @@ pub mod headless;
 pub mod metrics;
 pub mod mjcf;
 #[cfg(feature = "tools")]
+pub mod parallel;
+#[cfg(feature = "tools")]
 pub mod plot;
 pub mod soak;
 #[cfg(feature = "tools")]

@@ -34,8 +34,8 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 use crate::scene::{LoadedScene, Scene};
-use crate::tools::headless;
 use crate::tools::table::{ResultsFile, Shard, settings_line};
+use crate::tools::{headless, parallel};
 use crate::util::ron::{LoadError, parse_ron, read_text};
 
 /// A study file.
@@ -285,17 +285,8 @@ impl LoadedStudy {
             .map(|&k| self.scene(k))
             .collect::<Result<_, _>>()
             .map_err(anyhow::Error::msg)?;
-        let bar = indicatif::ProgressBar::new(todo.len() as u64);
-        bar.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{bar:40} {pos}/{len} runs, {elapsed} elapsed, eta {eta}",
-            )
-            .expect("template"),
-        );
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(jobs.max(1))
-            .build()?;
-        pool.install(|| {
+        let bar = parallel::bar(todo.len() as u64, "runs");
+        parallel::pool(jobs).install(|| {
             todo.par_iter().zip(&scenes).try_for_each(|(&k, scene)| {
                 let r = headless::run(scene, None, None, 1)?;
                 let (values, seed) = &self.runs[k];

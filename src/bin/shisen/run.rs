@@ -4,7 +4,7 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::OnceLock;
+use std::sync::Once;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::{Context, Result, bail};
@@ -98,11 +98,6 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         && p.extension().is_none_or(|e| !e.eq_ignore_ascii_case("png"))
     {
         bail!("--plot {}: must name a .png file", p.display());
-    }
-    if let Some(d) = a.duration
-        && !d.is_finite()
-    {
-        bail!("--duration: must be a number of seconds, got {d}");
     }
     let mut loaded = load(&a.scene)?;
     if let Some(s) = a.seed {
@@ -221,25 +216,18 @@ pub fn progress(total: f64, unit: &str) -> indicatif::ProgressBar {
     if total < 60.0 {
         return indicatif::ProgressBar::hidden();
     }
-    let bar = indicatif::ProgressBar::new(total as u64);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template(&format!(
-            "{{bar:40}} {{pos}}/{{len}} {unit}, {{elapsed}} elapsed, eta {{eta}} (Ctrl-C stops)"
-        ))
-        .expect("template"),
-    );
-    bar
+    shisen::tools::parallel::bar(total as u64, &format!("{unit} (Ctrl-C stops)"))
 }
 
 /// Set when the user presses Ctrl-C (the handler is installed on first use).
 pub fn interrupt_flag() -> &'static AtomicBool {
-    static FLAG: OnceLock<&'static AtomicBool> = OnceLock::new();
-    FLAG.get_or_init(|| {
-        let flag: &'static AtomicBool = Box::leak(Box::new(AtomicBool::new(false)));
+    static FLAG: AtomicBool = AtomicBool::new(false);
+    static HANDLER: Once = Once::new();
+    HANDLER.call_once(|| {
         // Without a handler (another one installed) Ctrl-C just ends the process.
-        let _ = ctrlc::set_handler(move || flag.store(true, Ordering::Relaxed));
-        flag
-    })
+        let _ = ctrlc::set_handler(|| FLAG.store(true, Ordering::Relaxed));
+    });
+    &FLAG
 }
 
 pub fn soak_cmd(minutes: f64, seed: u64, force: bool) -> Result<bool> {
@@ -253,16 +241,11 @@ pub fn soak_cmd(minutes: f64, seed: u64, force: bool) -> Result<bool> {
         );
     }
     let stop = interrupt_flag();
-    let bar = indicatif::ProgressBar::new(1000);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template(
-            "{bar:40} {percent}% simulated, {elapsed} elapsed, eta {eta}",
-        )
-        .expect("template"),
-    );
+    let total = (minutes * 60.0) as u64;
+    let bar = shisen::tools::parallel::bar(total, "s simulated (Ctrl-C stops)");
     let wall = std::time::Instant::now(); // reporting only
     let r = shisen::tools::soak::soak(minutes, seed, |f| {
-        bar.set_position((f * 1000.0) as u64);
+        bar.set_position((f * total as f64) as u64);
         !stop.load(Ordering::Relaxed)
     });
     bar.finish_and_clear();

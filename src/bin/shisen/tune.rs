@@ -113,17 +113,12 @@ pub fn sweep_cmd(
     shard: Shard,
 ) -> Result<()> {
     use shisen::tools::tune;
-    if grid && runs < 12 {
-        anyhow::bail!("--runs: a grid needs at least 12 runs (2 kp x 2 kd x 3 steps), got {runs}");
-    }
-    if runs == 0 {
-        anyhow::bail!("--runs: must be at least 1");
-    }
-    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let points: Vec<_> = tune::sweep_points(group, runs, grid, seed)
+        .map_err(anyhow::Error::msg)?
         .into_iter()
         .filter(|p| shard.contains(p.id))
         .collect();
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let settings = settings_line(
         "sweep",
         &[

@@ -118,12 +118,6 @@ pub fn score(group: Group, gains: &Gains, dt: f64) -> Score {
     }
 }
 
-/// The effective inertia of a group's joint about its main axis at rest,
-/// kg m^2 (from the physics model's mass properties).
-pub fn effective_inertia(group: Group) -> f64 {
-    crate::physics::world::group_inertia(group)
-}
-
 /// The physically based starting guess: critically damped gains for the
 /// group's target bandwidth on its effective inertia.
 pub fn initial_guess(group: Group) -> JointGains {
@@ -139,7 +133,7 @@ pub fn initial_guess(group: Group) -> JointGains {
                     Group::Shoulder => 25.0,
                     Group::Elbow => 30.0,
                 };
-                JointGains::from_bandwidth(effective_inertia(g), omega, 1.0)
+                JointGains::from_bandwidth(crate::physics::world::group_inertia(g), omega, 1.0)
             })
             .collect()
     });

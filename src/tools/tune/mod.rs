@@ -25,7 +25,7 @@ mod tests {
 
     #[test]
     fn effective_inertia_of_the_eye_is_a_solid_sphere() {
-        let i = effective_inertia(Group::Eye);
+        let i = crate::physics::world::group_inertia(Group::Eye);
         let expect = 0.4 * 0.0075 * 0.011 * 0.011;
         assert!((i - expect).abs() / expect < 1e-3, "{i}");
     }

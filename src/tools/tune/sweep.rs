@@ -29,8 +29,21 @@ pub struct SweepPoint {
 /// seeded random samples.
 /// kp and kd range over a factor 5 either side of the guess (log scale);
 /// dt over 0.5, 1 and 2 ms.
-pub fn sweep_points(group: Group, runs: usize, grid: bool, seed: u64) -> Vec<SweepPoint> {
+pub fn sweep_points(
+    group: Group,
+    runs: usize,
+    grid: bool,
+    seed: u64,
+) -> Result<Vec<SweepPoint>, String> {
     use rand::{RngExt, SeedableRng};
+    if runs == 0 {
+        return Err("--runs: must be at least 1".into());
+    }
+    if grid && runs < 12 {
+        return Err(format!(
+            "--runs: a grid needs at least 12 runs (2 kp x 2 kd x 3 steps), got {runs}"
+        ));
+    }
     let g = initial_guess(group);
     let dts = [0.0005, 0.001, 0.002];
     let span = 5f64.ln();
@@ -50,17 +63,17 @@ pub fn sweep_points(group: Group, runs: usize, grid: bool, seed: u64) -> Vec<Swe
                 }
             }
         }
-        v
+        Ok(v)
     } else {
         let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
-        (0..runs)
+        Ok((0..runs)
             .map(|id| SweepPoint {
                 id,
                 kp: g.kp * rng.random_range(-span..span).exp(),
                 kd: g.kd * rng.random_range(-span..span).exp(),
                 dt: dts[rng.random_range(0..dts.len())],
             })
-            .collect()
+            .collect())
     }
 }
 
@@ -94,13 +107,7 @@ pub fn sweep(
         .copied()
         .filter(|p| !results.has(p.id))
         .collect();
-    let bar = indicatif::ProgressBar::new(todo.len() as u64);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template(
-            "{bar:40} {pos}/{len} runs, {elapsed} elapsed, eta {eta}",
-        )
-        .expect("template"),
-    );
+    let bar = crate::tools::parallel::bar(todo.len() as u64, "runs");
     let rows: Vec<anyhow::Result<(SweepPoint, f64, bool)>> = todo
         .par_iter()
         .map(|p| {
