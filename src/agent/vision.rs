@@ -14,11 +14,10 @@
 use glam::{DQuat, DVec3, Vec3};
 use serde::{Deserialize, Serialize};
 
-/// A body's pose and motion, world frame.
+/// A body's orientation and motion, world frame (read only for bodies in
+/// view).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BodyState {
-    /// Centre.
-    pub position: DVec3,
+pub struct Motion {
     /// Orientation.
     pub orientation: DQuat,
     /// Linear velocity.
@@ -37,8 +36,10 @@ pub trait Scenery {
     fn body_count(&self) -> usize;
     /// Whether body `i` is a part of the VH itself.
     fn is_own(&self, i: usize) -> bool;
-    /// Pose and motion of body `i`.
-    fn body_state(&self, i: usize) -> BodyState;
+    /// Centre of body `i`, world.
+    fn position(&self, i: usize) -> DVec3;
+    /// Orientation and motion of body `i`.
+    fn motion(&self, i: usize) -> Motion;
     /// Whether the ray from `from` along `dir` (not normalised; its length
     /// reaches the target's centre) hits body `target` before anything else
     /// (VH parts never block: the eyes look out of the head).
@@ -224,8 +225,7 @@ pub fn see(world: &impl Scenery, p: &VisionParams, open: [bool; 2], out: &mut Ve
         if world.is_own(i) && !p.see_self {
             continue;
         }
-        let body = world.body_state(i);
-        let pos = body.position;
+        let pos = world.position(i);
         let to = pos - cyclops;
         let distance = to.length();
         if distance < 1e-6 || distance > p.max_distance {
@@ -245,8 +245,8 @@ pub fn see(world: &impl Scenery, p: &VisionParams, open: [bool; 2], out: &mut Ve
         if !by_eye[0] && !by_eye[1] {
             continue;
         }
-        let velocity = body.velocity;
-        let angvel = body.angvel;
+        let body = world.motion(i);
+        let (velocity, angvel) = (body.velocity, body.angvel);
         // Head-relative motion (gaze.md 4): the body's own motion, in the
         // head's axes. The agent's own head motion is compensated (as the
         // vestibular signal and efference copy do for a person), so turning

@@ -8,7 +8,7 @@
 use glam::{DQuat, DVec3, Mat3, Quat, Vec3};
 use rapier3d::prelude::*;
 
-use crate::agent::vision::{BodyState, Scenery};
+use crate::agent::vision::{Motion, Scenery};
 use crate::physics::body::{BodyPlan, Group, HARD_STOP_MARGIN_DEG, JointKind, Shape, seg};
 use crate::physics::control::{Gains, JointState, JointTarget, pd_torque};
 use crate::util::math::JointAngles;
@@ -562,10 +562,13 @@ impl Scenery for World {
         matches!(self.bodies[i].owner, Owner::Vh(_))
     }
 
-    fn body_state(&self, i: usize) -> BodyState {
+    fn position(&self, i: usize) -> DVec3 {
+        self.rb(i).translation().as_dvec3()
+    }
+
+    fn motion(&self, i: usize) -> Motion {
         let rb = self.rb(i);
-        BodyState {
-            position: rb.translation().as_dvec3(),
+        Motion {
             orientation: rb.rotation().as_dquat(),
             velocity: rb.linvel().as_dvec3(),
             angvel: rb.angvel().as_dvec3(),
