@@ -24,7 +24,10 @@ fn window(s: &[Sample], from: f64, to: f64) -> impl Iterator<Item = &Sample> {
     s.iter().filter(move |x| x.t > from && x.t <= to)
 }
 
-const QUIET: &str = "behaviour: (attacks: false), oculomotor: (fixation: (enabled: false))";
+/// The laws as the seed states them (no reaction times, pursuit gain 1),
+/// no attacks, no microsaccades: each test measures one law.
+const QUIET: &str =
+    "profile: Seed, behaviour: (attacks: false), oculomotor: (fixation: (enabled: false))";
 
 /// The physical eye follows the planned saccade with RMS error below
 /// 0.5 deg, and settles within 1 deg of the target within 20 ms after the

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use shisen::agent::oculomotor::saccade::{SaccadeParams, SaccadeProfile};
 use shisen::scene::LoadedScene;
+use shisen::sim::{Profile, Sim};
 use shisen::tools::headless;
 use shisen::tools::metrics::step_metrics;
 
@@ -77,7 +78,11 @@ fn same_scene_and_seed_give_identical_trace_bytes() {
 fn look_sequence_eyes_and_neck_settle() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/look_sequence.ron");
     let loaded = LoadedScene::load(&path).expect("scene loads");
-    let mut sim = loaded.sim();
+    // Timed from each command: the seed's timing, with no reaction time
+    // between the command and the saccade.
+    let mut model = loaded.model();
+    model.apply_profile(Profile::Seed);
+    let mut sim = Sim::new(model, &loaded.scene.timeline);
     let mut rows = Vec::new();
     while sim.time() < loaded.scene.duration - 1e-9 {
         let s = sim.step();

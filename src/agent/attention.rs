@@ -10,7 +10,15 @@
 //!   gaze leaves, so a static-but-salient body cannot hold the gaze forever;
 //! - **minimum fixation**: once the gaze target changes it stays at least
 //!   `min_fixation` seconds, unless the target vanishes from view or a
-//!   challenger's amount exceeds the holder's by `override_ratio`.
+//!   challenger's amount exceeds the holder's by `override_ratio`;
+//! - **onset capture** (H5): a body that comes into view (enters the field
+//!   or comes out from behind another) after being out of it for at least
+//!   `onset_absence` gets a transient score `onset_gain exp(-(t - t_on) /
+//!   onset_tau)` on top of its motion saliency, so it is noticed however
+//!   slowly it moves. Abrupt onsets capture attention and the eyes
+//!   (Yantis & Jonides 1984, J. Exp. Psychol. HPP 10:601; Theeuwes et al.
+//!   1998, Psychol. Sci. 9:379, "our eyes do not always go where we want
+//!   them to go"); the capture is transient, a few hundred ms.
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -42,6 +50,19 @@ pub struct AttentionParams {
     /// Lowest weight habituation reaches, 0-1.
     #[serde(deserialize_with = "crate::util::check::unit_interval")]
     pub habituation_floor: f64,
+    /// Peak transient score of a body that comes into view (H5), as an
+    /// attention amount; 0 turns onset capture off (the seed). Default 4:
+    /// above every top-down amount of the default personality, so an
+    /// onset wins the gaze and turns the head fully (M8).
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    pub onset_gain: f64,
+    /// Decay time constant of the onset transient, s. Default 0.3.
+    #[serde(deserialize_with = "crate::util::check::positive")]
+    pub onset_tau: f64,
+    /// A body must have been out of view this long for its return to count
+    /// as an onset, s. Default 0.15.
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    pub onset_absence: f64,
 }
 
 impl Default for AttentionParams {
@@ -54,6 +75,9 @@ impl Default for AttentionParams {
             habituation_tau: 2.5,
             recovery_tau: 2.0,
             habituation_floor: 0.2,
+            onset_gain: 4.0,
+            onset_tau: 0.3,
+            onset_absence: 0.15,
         }
     }
 }
@@ -103,6 +127,12 @@ pub struct Attention {
     weight: Vec<f64>,
     current: Option<GazeChoice>,
     since: f64,
+    /// When each body was last in view (`None`: never).
+    last_seen: Vec<Option<f64>>,
+    /// When each body last came into view (H5).
+    onset: Vec<f64>,
+    /// When attention first ran.
+    start: Option<f64>,
     /// Each body's effective bottom-up score this tick (smoothed x weight),
     /// indexed by body; 0 for bodies not in view.
     pub scores: Vec<f64>,
@@ -136,6 +166,8 @@ impl Attention {
         let n = self.names.len();
         self.smoothed.resize(n, 0.0);
         self.weight.resize(n, 1.0);
+        self.last_seen.resize(n, None);
+        self.onset.resize(n, f64::NEG_INFINITY);
         self.scores.clear();
         self.scores.resize(n, 0.0);
         let alpha = if p.smoothing_tau > 0.0 {
@@ -147,7 +179,16 @@ impl Attention {
         for s in seen {
             in_view[s.body] = true;
             self.smoothed[s.body] += alpha * (s.saliency - self.smoothed[s.body]);
+            // (H5): an onset is a return after `onset_absence` out of view;
+            // what is there when the VH starts looking is no onset.
+            let start = *self.start.get_or_insert(t);
+            let away = t - self.last_seen[s.body].unwrap_or(start);
+            if away > p.onset_absence + dt / 2.0 {
+                self.onset[s.body] = t;
+            }
+            self.last_seen[s.body] = Some(t);
         }
+        self.start.get_or_insert(t);
         for (b, &visible) in in_view.iter().enumerate() {
             if !visible {
                 self.smoothed[b] *= 1.0 - alpha;
@@ -163,7 +204,7 @@ impl Attention {
                 *w += (1.0 - *w) * (dt / p.recovery_tau);
             }
             if visible {
-                self.scores[b] = self.smoothed[b] * *w;
+                self.scores[b] = self.smoothed[b] * *w + onset_score(p, t - self.onset[b]);
             }
         }
         let td_point = top_down
@@ -245,6 +286,15 @@ impl Attention {
             self.since = t;
         }
         self.current = Some(choice);
+    }
+}
+
+/// The transient score of a body `age` seconds after it came into view (H5).
+pub fn onset_score(p: &AttentionParams, age: f64) -> f64 {
+    if p.onset_gain > 0.0 && age >= 0.0 {
+        p.onset_gain * (-age / p.onset_tau).exp() // (H5)
+    } else {
+        0.0
     }
 }
 
@@ -350,5 +400,45 @@ mod tests {
             switches <= 1 + (1.0 / p.min_fixation) as usize,
             "{switches} switches"
         );
+    }
+
+    /// (H5): a slow ball entering the view at 1 s takes the gaze from the
+    /// face at once, for a while, then gives it back; the same ball in
+    /// view from the start never does, nor does a blink-length absence.
+    #[test]
+    fn onset_captures_the_gaze_transiently() {
+        let p = AttentionParams::default();
+        let dt = 0.001;
+        let run = |visible: &dyn Fn(f64) -> bool| {
+            let mut a = Attention::new(names());
+            let mut on_ball = Vec::new();
+            for i in 0..3000 {
+                let t = i as f64 * dt;
+                let s = if visible(t) {
+                    vec![seen(2, 0.3)]
+                } else {
+                    vec![]
+                };
+                let c = a.step(&p, &s, &face(1.5), |_| DVec3::ZERO, t, dt);
+                if c.name == "ball" {
+                    on_ball.push(t);
+                }
+            }
+            on_ball
+        };
+        let entering = run(&|t| t >= 1.0);
+        let (first, last) = (entering[0], *entering.last().unwrap());
+        assert!((first - 1.0).abs() < 0.002, "captured at {first}");
+        // Held while 0.3 + 4 e^(-age/0.3) > 1.5: about 0.36 s.
+        let expect = 1.0 + 0.3 * (4.0f64 / 1.2).ln();
+        assert!(
+            (last - expect).abs() < 0.03,
+            "released at {last}, expected {expect}"
+        );
+        assert!(run(&|_| true).is_empty(), "in view from the start");
+        let flicker = run(&|t| !(0.1..0.2).contains(&t) || t < 0.0);
+        assert!(flicker.is_empty(), "a 0.1 s absence is no onset");
+        let back = run(&|t| !(0.1..0.4).contains(&t));
+        assert!(back.first().is_some_and(|&b| (b - 0.4).abs() < 0.002));
     }
 }

@@ -105,6 +105,32 @@ pub struct VisionParams {
     /// The original's distance scaling: translation x3/r, expansion x2/r
     /// (gaze.md 11). Off by default.
     pub distance_scaling: bool,
+    /// The axis `e` the motion of (M1) is split along.
+    pub saliency_axis: SaliencyAxis,
+    /// Visual latency, s: the stages after vision (behaviour, attention)
+    /// act on what the eyes saw this long ago. Default 0.07: visual
+    /// responses reach V1 and the motion area MT 66-72 ms after a stimulus
+    /// (Schmolesky et al. 1998, J. Neurophysiol. 79:3272); the seed: 0.
+    #[serde(deserialize_with = "latency")]
+    pub latency: f64,
+}
+
+/// A latency, s: 0 to 1.
+fn latency<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    crate::util::check::in_range(d, 0.0, 1.0)
+}
+
+/// The axis along which (M1) splits a body's motion into "across" and
+/// "expansion".
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+pub enum SaliencyAxis {
+    /// The gaze direction (the mean of the two lines of sight), as (M1) is
+    /// printed: motion across the line of sight versus along it.
+    #[default]
+    Gaze,
+    /// The direction from the eyes to each body: "expansion" then means
+    /// looming toward the eyes wherever the body is in the field.
+    ToBody,
 }
 
 impl Default for VisionParams {
@@ -116,6 +142,8 @@ impl Default for VisionParams {
             occlusion: true,
             foveal_weight: false,
             distance_scaling: false,
+            saliency_axis: SaliencyAxis::Gaze,
+            latency: 0.07,
         }
     }
 }
@@ -173,10 +201,9 @@ impl Seen {
 /// velocity `l` and unit line of sight `e`:
 /// `|v - (v.e) e|` (across), `|(v.e) e|` (expansion), `|(l.e) e|` (rotation).
 ///
-/// We take `e` as the line of sight *to the body* (from the cyclopean eye):
-/// for the fixated body it is the gaze direction of (M1), and for any other
-/// body it makes "expansion" mean looming toward the eye, the reading the
-/// seed's text gives it.
+/// `e` is the gaze direction as (M1) prints it, or, with
+/// [`SaliencyAxis::ToBody`], the direction to the body itself (the two
+/// agree for the fixated body).
 pub fn saliency_terms(v: DVec3, l: DVec3, e: DVec3) -> [f64; 3] {
     let along = v.dot(e);
     [
@@ -221,6 +248,7 @@ pub fn see(world: &impl Scenery, p: &VisionParams, open: [bool; 2], out: &mut Ve
         (pos, head_inv * los_world)
     });
     let cyclops = ((eyes[0].0 + eyes[1].0) / 2.0).as_dvec3();
+    let gaze = (eyes[0].1 + eyes[1].1).normalize_or(DVec3::Z);
     for i in 0..world.body_count() {
         if world.is_own(i) && !p.see_self {
             continue;
@@ -255,15 +283,18 @@ pub fn see(world: &impl Scenery, p: &VisionParams, open: [bool; 2], out: &mut Ve
         let rel_v = head_inv * velocity;
         let rel_w = head_inv * angvel;
         let dir_head = head_inv * (to / distance);
-        let mut terms = saliency_terms(rel_v, rel_w, dir_head);
+        let axis = match p.saliency_axis {
+            SaliencyAxis::Gaze => gaze,
+            SaliencyAxis::ToBody => dir_head,
+        };
+        let mut terms = saliency_terms(rel_v, rel_w, axis); // (M1)
         if p.distance_scaling {
             terms[0] *= 3.0 / distance;
             terms[1] *= 2.0 / distance;
         }
         let mut saliency = terms.iter().sum::<f64>();
         if p.foveal_weight {
-            let los = (eyes[0].1 + eyes[1].1).normalize();
-            let theta = crate::util::math::angle_between(los, dir_head);
+            let theta = crate::util::math::angle_between(gaze, dir_head);
             saliency *= (-2.0 * theta * theta).exp();
         }
         out.push(Seen {
@@ -307,6 +338,71 @@ mod tests {
             saliency_terms(DVec3::ZERO, DVec3::new(5.0, 0.0, 0.0), e),
             [0.0, 0.0, 0.0]
         );
+    }
+
+    /// (M1) splits motion along the gaze direction: a body 45 deg off the
+    /// line of sight looming straight at the eyes moves half across, half
+    /// along the gaze; measured against its own direction it only expands.
+    #[test]
+    fn m1_axis_is_the_gaze_direction_unless_asked_otherwise() {
+        let gaze = DVec3::Z;
+        let to_body = DVec3::new(1.0, 0.0, 1.0).normalize();
+        let v = -to_body * 2.0;
+        let [across, along, _] = saliency_terms(v, DVec3::ZERO, gaze);
+        assert!((across - 2f64.sqrt()).abs() < 1e-12 && (along - 2f64.sqrt()).abs() < 1e-12);
+        let [across, along, _] = saliency_terms(v, DVec3::ZERO, to_body);
+        assert!(across < 1e-12 && (along - 2.0).abs() < 1e-12);
+    }
+
+    /// One body looming at eyes that look straight ahead.
+    struct Looming;
+
+    impl Scenery for Looming {
+        fn head_rotation(&self) -> DQuat {
+            DQuat::IDENTITY
+        }
+        fn eye(&self, k: usize) -> (Vec3, DVec3) {
+            (
+                Vec3::new(if k == 0 { 0.03 } else { -0.03 }, 0.0, 0.0),
+                DVec3::Z,
+            )
+        }
+        fn body_count(&self) -> usize {
+            1
+        }
+        fn is_own(&self, _: usize) -> bool {
+            false
+        }
+        fn position(&self, _: usize) -> DVec3 {
+            DVec3::new(1.0, 0.0, 1.0)
+        }
+        fn motion(&self, _: usize) -> Motion {
+            Motion {
+                orientation: DQuat::IDENTITY,
+                velocity: -DVec3::new(1.0, 0.0, 1.0).normalize() * 2.0,
+                angvel: DVec3::ZERO,
+            }
+        }
+        fn first_hit(&self, _: Vec3, _: DVec3, _: usize) -> bool {
+            true
+        }
+    }
+
+    #[test]
+    fn see_splits_motion_along_the_chosen_axis() {
+        let terms = |axis| {
+            let p = VisionParams {
+                saliency_axis: axis,
+                ..VisionParams::default()
+            };
+            let mut out = Vec::new();
+            see(&Looming, &p, [true, true], &mut out);
+            out[0].terms
+        };
+        let g = terms(SaliencyAxis::Gaze);
+        assert!((g[0] - 2f64.sqrt()).abs() < 1e-9 && (g[1] - 2f64.sqrt()).abs() < 1e-9);
+        let b = terms(SaliencyAxis::ToBody);
+        assert!(b[0] < 1e-9 && (b[1] - 2.0).abs() < 1e-9, "{b:?}");
     }
 
     #[test]

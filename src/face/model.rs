@@ -115,16 +115,19 @@ impl FaceState {
     /// lid-follow contraction for the eye pitch, and the upper one the blink:
     /// `k <- k + b (k45 - k)` with b the AU45 level (so a blink closes the
     /// lid fully from any expression). Spontaneous blinks occur only in
-    /// neutral when `blink.neutral_only` is set (the thesis's rule).
+    /// neutral when `blink.neutral_only` is set (the thesis's rule); their
+    /// rate drops while sparring and rises with arousal.
     pub fn step(&mut self, face: &Face, dt: f64, rng: &mut impl Rng) {
         let bp = &face.params.blink;
         self.transition.advance(dt);
         let allowed = !bp.neutral_only || self.emotion == Emotion::Neutral;
-        let scale = if self.engaged {
+        let situation = if self.engaged {
             bp.engaged_interval_scale
         } else {
             1.0
         };
+        let arousal = self.emotion.arousal() * f64::from(self.intensity);
+        let scale = situation / (1.0 + bp.arousal_gain * arousal);
         self.blink.step(bp, dt, allowed, scale, rng);
         let mut a = self
             .transition
@@ -325,6 +328,14 @@ mod tests {
         let before = s.blink.count;
         for _ in 0..20_000 {
             s.step(&f, 0.001, &mut rng);
+        }
+        assert!(s.blink.count > before, "people blink whatever they feel");
+        // The thesis's rule, as an option: no spontaneous blinks out of neutral.
+        let mut thesis = face(32);
+        thesis.params.blink.neutral_only = true;
+        let before = s.blink.count;
+        for _ in 0..20_000 {
+            s.step(&thesis, 0.001, &mut rng);
         }
         assert_eq!(
             s.blink.count, before,

@@ -52,7 +52,9 @@ pub struct BlinkParams {
     /// Inverse Gaussian shape lambda, seconds (13.94).
     #[serde(deserialize_with = "crate::util::check::positive")]
     pub shape_s: f64,
-    /// Spontaneous blinks only while the face is neutral (thesis).
+    /// Spontaneous blinks only while the face is neutral (the thesis's
+    /// rule). Off by default: people blink whatever they feel.
+    #[serde(default)]
     pub neutral_only: bool,
     /// Gaze shifts smaller than this never trigger a blink (degrees).
     #[serde(deserialize_with = "crate::util::check::non_negative")]
@@ -81,6 +83,21 @@ pub struct BlinkParams {
         deserialize_with = "crate::util::check::positive"
     )]
     pub engaged_interval_scale: f64,
+    /// Blink rate rises with arousal: the rate is multiplied by
+    /// `1 + arousal_gain x arousal x intensity` (arousal of the emotion,
+    /// 0-1, [`crate::face::tables::Emotion::arousal`]). Spontaneous blink
+    /// rate goes up with arousal, anxiety and stress (Stern, Walrath &
+    /// Goldstein 1984, Psychophysiology 21:22, a review). Default 0.5
+    /// (our choice within that trend); 0 turns it off.
+    #[serde(
+        default = "default_arousal_gain",
+        deserialize_with = "crate::util::check::non_negative"
+    )]
+    pub arousal_gain: f64,
+}
+
+fn default_arousal_gain() -> f64 {
+    0.5
 }
 
 fn default_engaged_scale() -> f64 {

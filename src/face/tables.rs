@@ -380,7 +380,30 @@ pub const TABLE_A: [(Emotion, [Expression; 3]); 35] = {
     ]
 };
 
+impl Expression {
+    /// Arousal of the expression, 0 (calm) to 1 (most aroused): the
+    /// arousal axis of Russell's circumplex (Russell 1980, J. Pers. Soc.
+    /// Psychol. 39:1161; placements of Russell & Barrett 1999), rounded.
+    pub fn arousal(self) -> f64 {
+        match self {
+            Expression::Neutral => 0.0,
+            Expression::Sadness => 0.2,
+            Expression::Happiness => 0.5,
+            Expression::Disgust => 0.5,
+            Expression::Anger => 0.8,
+            Expression::Fear => 0.9,
+            Expression::Surprise => 0.9,
+        }
+    }
+}
+
 impl Emotion {
+    /// Arousal of the emotion, 0-1: the mean over its three regions'
+    /// expressions ([`Expression::arousal`]).
+    pub fn arousal(self) -> f64 {
+        self.regions().iter().map(|e| e.arousal()).sum::<f64>() / 3.0
+    }
+
     /// Region expressions [upper, middle, lower] (table A).
     pub fn regions(self) -> [Expression; 3] {
         TABLE_A[self as usize].1

@@ -328,7 +328,8 @@ mod tests {
     #[test]
     fn frame_has_every_part_and_is_deterministic() {
         let mut sim = LoadedScene::default_scene().sim();
-        for _ in 0..50 {
+        // Past vision's latency, so the VH perceives the opponent.
+        for _ in 0..150 {
             sim.step();
         }
         let all = Overlays {

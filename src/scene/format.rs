@@ -13,12 +13,15 @@ use crate::agent::vision::VisionParams;
 use crate::physics::control::Gains;
 use crate::sim::expect::Expect;
 use crate::sim::timeline::Event;
-use crate::sim::{BodySpec, Params};
+use crate::sim::{BodySpec, Params, Profile};
 
 /// Parameters of the virtual human.
 #[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct VhParams {
+    /// Human (default) or the seed's timing and perception; `Seed` sets
+    /// the fields [`Profile::Seed`] lists, overriding values given here.
+    pub profile: Profile,
     /// Attention amounts.
     pub personality: Personality,
     /// Action planner.

@@ -81,12 +81,16 @@ impl LoadedScene {
         };
         expand_scripts(&mut scene, &resolve, text, file)?;
         let face = load_face(&scene.vh.face, &resolve, text, file)?;
-        Ok(LoadedScene {
+        let mut loaded = LoadedScene {
             scene,
             gains,
             face: std::sync::Arc::new(face),
             source: file.display().to_string(),
-        })
+        };
+        // The profile's face part once, on the face every run shares
+        // (`model` applies the profile).
+        loaded.face = loaded.model().face;
+        Ok(loaded)
     }
 
     /// The simulation model this scene describes.
@@ -100,10 +104,12 @@ impl LoadedScene {
             attention: vh.attention.clone(),
             oculomotor: vh.oculomotor.clone(),
         };
-        Model {
+        let mut model = Model {
             props: self.scene.bodies.clone(),
             ..Model::new(self.face.clone(), params, self.scene.seed)
-        }
+        };
+        model.apply_profile(vh.profile);
+        model
     }
 
     /// A simulation of this scene, at its start.

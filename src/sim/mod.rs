@@ -27,8 +27,9 @@ use crate::physics::body::{Shape, arm_ik, seg};
 use crate::physics::control::JointTarget;
 use crate::physics::world::opp;
 use crate::physics::world::{PropSpec, World};
+use crate::util::delay::DelayLine;
 use crate::util::math::{JointAngles, angle_between, yaw_pitch_of};
-pub use model::{BodySpec, DT, Model, Params, PropShape};
+pub use model::{BodySpec, DT, Model, Params, Profile, PropShape};
 pub use sample::Sample;
 use timeline::{Event, Timeline};
 use track::Track;
@@ -39,6 +40,11 @@ const ARM_MAX_RATE: f32 = 40.0;
 
 /// Angular speed (rad/s) of a VH segment taken as a physics explosion.
 pub const BLOW_UP_ANGVEL: f32 = 200.0;
+
+/// The VH counts as sparring (for its blink rate) until this long after
+/// it last guarded or attacked, s: longer than the gaps between actions in
+/// a bout (attacks come every few seconds), shorter than a pause.
+const SPARRING_HOLD: f64 = 5.0;
 
 /// Independent random streams, one per consumer, all derived from the
 /// scene seed, so adding draws to one never shifts another.
@@ -74,7 +80,13 @@ pub struct Sim {
     pub oculomotor: Oculomotor,
     /// The face's evolving state (expression, blinks).
     pub face_state: crate::face::FaceState,
+    /// What the eyes see this tick.
+    sight: Vec<Seen>,
+    /// What the stages act on: the sight of `vision.latency` ago.
     seen: Vec<Seen>,
+    percept: DelayLine<Vec<Seen>>,
+    /// When the VH last guarded or attacked, s.
+    last_action: f64,
     targets: Vec<JointTarget>,
     rng: Streams,
     names: Vec<String>,
@@ -139,7 +151,10 @@ impl Sim {
             timeline: Timeline::new(timeline, &scripted),
             attention: Attention::new(names.clone()),
             behaviour,
+            sight: Vec::new(),
             seen: Vec::new(),
+            percept: DelayLine::new(),
+            last_action: f64::NEG_INFINITY,
             targets,
             names,
             fixated: None,
@@ -176,7 +191,8 @@ impl Sim {
         self.last.as_ref()
     }
 
-    /// Bodies in view after the last tick.
+    /// Bodies in view as the VH's stages perceived them in the last tick
+    /// (the sight of `vision.latency` ago).
     pub fn seen(&self) -> &[Seen] {
         &self.seen
     }
@@ -232,10 +248,19 @@ impl Sim {
         self.record(&gaze, reset)
     }
 
-    /// Sense: the bodies in view through the open eyes, with saliency (M1).
+    /// Sense: the bodies in view through the open eyes, with saliency (M1);
+    /// the later stages get them `vision.latency` late.
     fn sense(&mut self) {
         let open = self.timeline.occluded.map(|o| !o);
-        see(&self.world, &self.model.params.vision, open, &mut self.seen);
+        let vision = &self.model.params.vision;
+        see(&self.world, vision, open, &mut self.sight);
+        if vision.latency > 0.0 {
+            self.seen = self
+                .percept
+                .push(self.sight.clone(), vision.latency, self.model.dt);
+        } else {
+            std::mem::swap(&mut self.seen, &mut self.sight);
+        }
     }
 
     /// Decide: the action planner's top-down request and glove plans.
@@ -353,7 +378,11 @@ impl Sim {
                 .gaze_shift(face, amplitude.to_degrees(), &mut self.rng.face);
         }
         self.face_state.eye_pitch = gaze.eye_angles.map(|a| a.y as f32);
-        self.face_state.engaged = self.behaviour.action() != ActionKind::Idle;
+        let t = self.time();
+        if self.behaviour.action() != ActionKind::Idle {
+            self.last_action = t;
+        }
+        self.face_state.engaged = t - self.last_action < SPARRING_HOLD;
         self.face_state
             .step(face, self.model.dt, &mut self.rng.face);
     }

@@ -46,6 +46,35 @@ pub struct Params {
     pub oculomotor: OculomotorParams,
 }
 
+/// Which defaults the VH's timing and perception follow (scene
+/// `vh.profile`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+pub enum Profile {
+    /// Human reaction times, pursuit limits, onset capture and blinking,
+    /// each default citing its human source (docs/model/gaze.md "Human
+    /// timing").
+    #[default]
+    Human,
+    /// The seed papers' laws as printed, for their figures: no latencies
+    /// (vision, saccades, pursuit, VOR, guard), pursuit gain 1, no onset
+    /// capture, blinks only in the neutral face at the thesis's rate.
+    Seed,
+}
+
+impl Params {
+    /// Set what `profile` fixes: for [`Profile::Seed`] the fields listed
+    /// there, overriding any value given for them; [`Profile::Human`]
+    /// changes nothing (the defaults are the human ones).
+    pub fn apply_profile(&mut self, profile: Profile) {
+        if profile == Profile::Seed {
+            self.vision.latency = 0.0;
+            self.oculomotor.timing = crate::agent::oculomotor::timing::TimingParams::seed();
+            self.behaviour.guard_reaction = 0.0;
+            self.attention.onset_gain = 0.0;
+        }
+    }
+}
+
 /// The static description of one simulation.
 #[derive(Clone, Debug)]
 pub struct Model {
@@ -64,6 +93,24 @@ pub struct Model {
 }
 
 impl Model {
+    /// Set what `profile` fixes, in the parameters
+    /// ([`Params::apply_profile`]) and the face's blinks (the seed blinks
+    /// only when neutral, at the thesis's rate whatever the situation).
+    pub fn apply_profile(&mut self, profile: Profile) {
+        self.params.apply_profile(profile);
+        let b = &self.face.params.blink;
+        let seed_blinks =
+            b.neutral_only && b.engaged_interval_scale == 1.0 && b.arousal_gain == 0.0;
+        if profile == Profile::Seed && !seed_blinks {
+            // The face is shared: copied once here, not per run (the scene
+            // loader applies the profile to the face it shares).
+            let blink = &mut Arc::make_mut(&mut self.face).params.blink;
+            blink.neutral_only = true;
+            blink.engaged_interval_scale = 1.0;
+            blink.arousal_gain = 0.0;
+        }
+    }
+
     /// A model with the default body plan, the generated face and default
     /// parameters at the standard step ([`DT`]).
     pub fn new(face: Arc<Face>, params: Params, seed: u64) -> Model {

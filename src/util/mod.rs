@@ -3,5 +3,6 @@
 //! about the virtual human.
 
 pub mod check;
+pub mod delay;
 pub mod math;
 pub mod ron;

@@ -29,6 +29,7 @@ pub mod head;
 pub mod pursuit;
 pub mod saccade;
 pub mod takagi;
+pub mod timing;
 
 use glam::{DQuat, DVec2, DVec3};
 use rand::Rng;
@@ -44,6 +45,7 @@ use pursuit::{
 };
 use saccade::{Saccade, SaccadeParams};
 use takagi::{GazeShift, Preset};
+use timing::{Aim, TimingParams};
 
 /// How the VH shifts its gaze to a new target.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
@@ -73,6 +75,9 @@ pub struct OculomotorParams {
     pub fixation: FixationParams,
     /// Law for shifts to new targets (commands may override it).
     pub gaze_shift: GazeShiftLaw,
+    /// Human reaction times and pursuit limits in front of the laws
+    /// ([`timing`]).
+    pub timing: TimingParams,
 }
 
 /// What the controller needs to know this tick.
@@ -154,7 +159,7 @@ pub struct Oculomotor {
     mode: EyeMode,
     pursuit: BinocularState,
     head: Option<(HeadMove, f64)>,
-    last_target: Option<u64>,
+    aim: Aim,
     eye_onset: f64,
     prev_goal: Option<[DVec2; 2]>,
     fixation: FixationState,
@@ -176,7 +181,7 @@ impl Oculomotor {
             mode: EyeMode::Pursuit,
             pursuit: BinocularState::new(DVec2::ZERO, DVec2::ZERO),
             head: None,
-            last_target: None,
+            aim: Aim::default(),
             eye_onset: f64::NEG_INFINITY,
             prev_goal: None,
             out: GazeOutput::default(),
@@ -208,13 +213,20 @@ impl Oculomotor {
     ) -> GazeOutput {
         let head_inv = input.head_rot.inverse();
         let range = DVec2::new(p.pursuit.yaw_range, p.pursuit.pitch_range);
-        // Each eye's goal: the gaze point's direction from that eye, head frame.
-        let point = head_inv * input.point;
+        let cyclops = (input.eye_pos[0] + input.eye_pos[1]) / 2.0;
+        // Where the laws aim: the target once its reaction time is over,
+        // moved by the pursuit drive between saccades (timing.rs, H1-H3).
+        let aim = self
+            .aim
+            .step(&p.timing, input.point, input.target_id, cyclops, t, dt, rng);
+        let target = aim.point;
+        let head_angvel = self.aim.vestibular(&p.timing, input.head_angvel, dt); // (H4)
+        // Each eye's goal: the aim's direction from that eye, head frame.
+        let point = head_inv * target;
         let goal = input
             .eye_pos
             .map(|c| angles_to(head_inv * c, point).clamp(-range, range));
-        let new_target = self.last_target != Some(input.target_id);
-        self.last_target = Some(input.target_id);
+        let new_target = aim.new_target;
         let target_rate = match self.prev_goal {
             Some(prev) if !new_target => [(goal[0] - prev[0]) / dt, (goal[1] - prev[1]) / dt],
             _ => [DVec2::ZERO; 2],
@@ -231,10 +243,9 @@ impl Oculomotor {
             // Target relative to the current line of sight, torso frame
             // (yaw and pitch of the cyclopean direction), in degrees.
             let torso_inv = input.torso_rot.inverse();
-            let cyclops = (input.eye_pos[0] + input.eye_pos[1]) / 2.0;
             let mean = (prev.eyes[0].angles + prev.eyes[1].angles) / 2.0;
             let (ly, lp) = yaw_pitch_of(torso_inv * world_dir(mean));
-            let (ty, tp) = yaw_pitch_of(torso_inv * (input.point - cyclops));
+            let (ty, tp) = yaw_pitch_of(torso_inv * (target - cyclops));
             let delta = DVec2::new(ty - ly, tp - lp);
             let mut shift = preset.build(delta * (180.0 / std::f64::consts::PI));
             if let GazeShiftLaw::Linear(_) = input.style {
@@ -253,14 +264,14 @@ impl Oculomotor {
             let (l, r) = self.pursuit.angles();
             let err = [goal[0] - l, goal[1] - r];
             let max_err = err[0].length().max(err[1].length());
-            let jump = new_target && max_err > p.saccade.end_threshold * 5.0;
+            let jump = (new_target || aim.catch_up) && max_err > p.saccade.new_target_threshold;
             if jump || p.saccade.should_start(max_err) {
                 // Plan in world (yaw, pitch): from where each eye points now
                 // to the gaze point as seen from that eye (M2-M6 along the
                 // great circle).
                 let plans = [0, 1].map(|k| {
                     let (sy, sp) = yaw_pitch_of(world_dir(prev.eyes[k].angles));
-                    let (gy, gp) = yaw_pitch_of(input.point - input.eye_pos[k]);
+                    let (gy, gp) = yaw_pitch_of(target - input.eye_pos[k]);
                     Saccade::plan(&p.saccade, DVec2::new(sy, sp), DVec2::new(gy, gp))
                 });
                 self.mode = EyeMode::Saccade {
@@ -322,8 +333,7 @@ impl Oculomotor {
                 // which lets an occluded partner keep converging (pursuit.rs).
                 // Focus distance from the head-frame origin, the midpoint
                 // between the eyes (pursuit.rs's convention).
-                let cyclops = (input.eye_pos[0] + input.eye_pos[1]) / 2.0;
-                let focus = (input.point - cyclops).length();
+                let focus = (target - cyclops).length();
                 let inputs = [(goal[0] - l, 0), (goal[1] - r, 1)].map(|(e, k)| {
                     if input.visible[k] {
                         EyeInput::seen(e, target_rate[k]).with_focus(focus)
@@ -331,7 +341,7 @@ impl Oculomotor {
                         EyeInput::occluded()
                     }
                 });
-                let w = head_rate_from_angular_velocity(head_inv * input.head_angvel);
+                let w = head_rate_from_angular_velocity(head_inv * head_angvel);
                 let (l, r) = self.pursuit.step(&p.pursuit, dt, &inputs[0], &inputs[1], w);
                 let (rl, rr) = self.pursuit.rates();
                 // Idle gaze: conjugate microsaccades and drift on top.
@@ -349,7 +359,7 @@ impl Oculomotor {
         // Head: start rule, then (M8) amplitude and (M9) trajectory.
         let torso_inv = input.torso_rot.inverse();
         let face_fwd = input.head_rot * DVec3::Z;
-        let to_point = (input.point - input.head_pos).normalize_or(face_fwd);
+        let to_point = (target - input.head_pos).normalize_or(face_fwd);
         let from_face = angle_between(face_fwd, to_point);
         let moving = self
             .head

@@ -63,9 +63,13 @@ pub struct SaccadeParams {
     /// A saccade starts when either eye's error exceeds this (rad). Default 5 deg.
     #[serde(deserialize_with = "crate::util::check::positive")]
     pub start_threshold: f64,
-    /// Pursuit resumes when every eye's error is below this (rad). Default 0.1 deg.
+    /// A new target (or a catch-up) draws a saccade when an eye's error to
+    /// it exceeds this (rad); nearer, pursuit glides there. Default 0.5 deg.
+    /// (The seed's "pursuit resumes below 0.1 deg" end rule is not needed:
+    /// a saccade ends when its planned profile does, at the goal; see
+    /// docs/model/gaze.md section 8.)
     #[serde(deserialize_with = "crate::util::check::positive")]
-    pub end_threshold: f64,
+    pub new_target_threshold: f64,
 }
 
 impl Default for SaccadeParams {
@@ -77,7 +81,7 @@ impl Default for SaccadeParams {
             main_sequence_intercept: 0.021,
             main_sequence_slope: 0.0022f64.to_degrees(),
             start_threshold: 5f64.to_radians(),
-            end_threshold: 0.1f64.to_radians(),
+            new_target_threshold: 0.5f64.to_radians(),
         }
     }
 }
@@ -99,12 +103,6 @@ impl SaccadeParams {
     /// [`Self::start_threshold`].
     pub fn should_start(&self, max_error: f64) -> bool {
         max_error > self.start_threshold
-    }
-
-    /// Hysteresis end test: true when the largest eye error (rad) is below
-    /// [`Self::end_threshold`].
-    pub fn should_end(&self, max_error: f64) -> bool {
-        max_error < self.end_threshold
     }
 }
 
@@ -563,10 +561,9 @@ mod tests {
     }
 
     #[test]
-    fn hysteresis_thresholds() {
+    fn start_threshold() {
         let p = seed();
         assert!(p.should_start(6f64.to_radians()) && !p.should_start(4f64.to_radians()));
-        assert!(p.should_end(0.05f64.to_radians()) && !p.should_end(0.2f64.to_radians()));
     }
 
     #[test]
