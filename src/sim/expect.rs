@@ -139,6 +139,30 @@ pub enum Expect {
         #[serde(deserialize_with = "crate::util::check::unit_interval")]
         at_least: f64,
     },
+    /// The VH blinks (lids more than half shut) at least `at_least` times
+    /// in [from, to].
+    Blinks {
+        /// Window start, s.
+        #[serde(deserialize_with = "crate::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "crate::util::check::non_negative")]
+        to: f64,
+        /// Fewest blinks.
+        at_least: u32,
+    },
+    /// An opponent glove touches the VH's head in [from, to] (`hit: true`),
+    /// or never does (`hit: false`).
+    HeadHit {
+        /// Window start, s.
+        #[serde(deserialize_with = "crate::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "crate::util::check::non_negative")]
+        to: f64,
+        /// Whether the head is hit.
+        hit: bool,
+    },
     /// Every state value stays finite for the whole run.
     Finite,
 }
@@ -167,6 +191,8 @@ struct Acc {
     /// Telegraph: when the gaze last went onto the attack target.
     since: Option<f64>,
     punching: bool,
+    /// Blinks: whether the lids were more than half shut last tick.
+    shut: bool,
 }
 
 impl Expect {
@@ -179,6 +205,8 @@ impl Expect {
             | Expect::GazeReaches { from, to, .. }
             | Expect::LineOfSight { from, to, .. }
             | Expect::AngleReaches { from, to, .. }
+            | Expect::Blinks { from, to, .. }
+            | Expect::HeadHit { from, to, .. }
             | Expect::ActionShare { from, to, .. } => Some((*from, *to)),
             Expect::AngleBelow { from, to, .. } => {
                 Some((from.unwrap_or(0.0), to.unwrap_or(duration)))
@@ -289,6 +317,18 @@ impl Checker {
                     if inside(s.t, *from, *to) {
                         a.n += 1;
                         a.hits += (s.action == *action) as u64;
+                    }
+                }
+                Expect::Blinks { from, to, .. } => {
+                    let shut = s.blink > 0.5;
+                    if inside(s.t, *from, *to) && shut && !a.shut {
+                        a.hits += 1;
+                    }
+                    a.shut = shut;
+                }
+                Expect::HeadHit { from, to, .. } => {
+                    if inside(s.t, *from, *to) && s.head_hit && a.first.is_none() {
+                        a.first = Some(s.t);
                     }
                 }
                 Expect::Finite => {
@@ -425,6 +465,23 @@ fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
                 pass: a.n > 0 && v >= *at_least,
             }
         }
+        Expect::Blinks { from, to, at_least } => Verdict {
+            what: format!("at least {at_least} blinks in [{from}, {to}] s"),
+            measured: format!("{} blinks", a.hits),
+            value: a.hits as f64,
+            pass: a.hits >= u64::from(*at_least),
+        },
+        Expect::HeadHit { from, to, hit } => Verdict {
+            what: format!(
+                "the head is {}hit in [{from}, {to}] s",
+                if *hit { "" } else { "not " }
+            ),
+            measured: a
+                .first
+                .map_or("no hit".into(), |t| format!("hit at {t:.3} s")),
+            value: a.first.map_or(0.0, |_| 1.0),
+            pass: a.first.is_some() == *hit,
+        },
         Expect::Finite => Verdict {
             what: "state finite throughout (no NaN)".into(),
             measured: if a.bad {
