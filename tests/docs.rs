@@ -1,6 +1,7 @@
 //! Every equation the code cites has its explanation in `docs/model/`:
-//! a comment naming `(M7)` or `(F6)` resolves to an anchor `m7` / `f6`
-//! there (gaze equations and T1 in gaze.md, face equations in face.md).
+//! a comment naming `(M7)`, `(H2)` or `(F6)` resolves to an anchor `m7` /
+//! `h2` / `f6` there (gaze equations, T1 and the human-timing laws H1-H5
+//! in gaze.md, face equations in face.md).
 
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -23,7 +24,7 @@ fn cited(text: &str) -> BTreeSet<String> {
     let mut out = BTreeSet::new();
     for i in 0..b.len().saturating_sub(2) {
         let prev_ok = i == 0 || !(b[i - 1].is_ascii_alphanumeric() || b[i - 1] == b'_');
-        if prev_ok && matches!(b[i], b'M' | b'F' | b'T') && b[i + 1].is_ascii_digit() {
+        if prev_ok && matches!(b[i], b'M' | b'F' | b'T' | b'H') && b[i + 1].is_ascii_digit() {
             let mut j = i + 1;
             while j < b.len() && b[j].is_ascii_digit() {
                 j += 1;
@@ -51,7 +52,10 @@ fn every_cited_equation_is_documented() {
         .iter()
         .map(|d| std::fs::read_to_string(root.join("docs/model").join(d)).unwrap())
         .collect();
-    assert!(labels.contains("m1") && labels.contains("f7"), "{labels:?}");
+    assert!(
+        labels.contains("m1") && labels.contains("f7") && labels.contains("h1"),
+        "{labels:?}"
+    );
     let missing: Vec<_> = labels
         .iter()
         .filter(|l| !docs.contains(&format!("<a id=\"{l}\">")))
