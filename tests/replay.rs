@@ -83,9 +83,11 @@ fn a_recorded_session_replays_byte_for_byte() {
 /// the VH's eyes have moved 2 deg (a saccade toward the glove, not fixation
 /// noise). The app adds nothing: input
 /// is applied before the frame's ticks and the frame renders their result.
+/// Measured on the seed's timing, so the VH's own (human) reaction time
+/// does not hide what the app would add.
 #[test]
 fn eyes_react_to_a_throw_within_a_fifth_of_a_second() {
-    let text = "Scene(duration: 3.0, vh: (behaviour: (attacks: false)))";
+    let text = "Scene(duration: 3.0, vh: (profile: Seed, behaviour: (attacks: false)))";
     let loaded = LoadedScene::from_str(text, Path::new("quiet.ron"), None).unwrap();
     let mut s = Session::new(loaded, SceneSource::default_scene());
     while s.sim.time() < 1.0 {

@@ -51,9 +51,10 @@ pub struct AttentionParams {
     #[serde(deserialize_with = "crate::util::check::unit_interval")]
     pub habituation_floor: f64,
     /// Peak transient score of a body that comes into view (H5), as an
-    /// attention amount; 0 turns onset capture off (the seed). Default 4:
+    /// attention amount; 0 turns onset capture off (the seed). Default 3.5:
     /// above every top-down amount of the default personality, so an
-    /// onset wins the gaze and turns the head fully (M8).
+    /// onset wins the gaze and turns the head fully (M8), but below a
+    /// strong boxer's A_face (4), who keeps watching the face.
     #[serde(deserialize_with = "crate::util::check::non_negative")]
     pub onset_gain: f64,
     /// Decay time constant of the onset transient, s. Default 0.3.
@@ -75,7 +76,7 @@ impl Default for AttentionParams {
             habituation_tau: 2.5,
             recovery_tau: 2.0,
             habituation_floor: 0.2,
-            onset_gain: 4.0,
+            onset_gain: 3.5,
             onset_tau: 0.3,
             onset_absence: 0.15,
         }
@@ -429,8 +430,8 @@ mod tests {
         let entering = run(&|t| t >= 1.0);
         let (first, last) = (entering[0], *entering.last().unwrap());
         assert!((first - 1.0).abs() < 0.002, "captured at {first}");
-        // Held while 0.3 + 4 e^(-age/0.3) > 1.5: about 0.36 s.
-        let expect = 1.0 + 0.3 * (4.0f64 / 1.2).ln();
+        // Held while 0.3 + 3.5 e^(-age/0.3) > 1.5: about 0.32 s.
+        let expect = 1.0 + 0.3 * (3.5f64 / 1.2).ln();
         assert!(
             (last - expect).abs() < 0.03,
             "released at {last}, expected {expect}"

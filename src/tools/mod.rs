@@ -8,6 +8,8 @@
 
 #[cfg(feature = "tools")]
 pub mod batch;
+#[cfg(feature = "tools")]
+pub mod fidelity;
 pub mod headless;
 pub mod metrics;
 pub mod mjcf;

@@ -209,7 +209,9 @@ impl Aim {
         };
         if self.current != Some(id) {
             // (H1): a new target waits for its reaction time.
+            // (The very first target is where the VH starts out looking.)
             let due = match self.pending {
+                _ if self.current.is_none() => t,
                 Some((pid, due)) if pid == id => due,
                 _ => {
                     let due = t + p.saccade_latency.draw(rng);

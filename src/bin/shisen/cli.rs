@@ -170,6 +170,22 @@ pub enum Command {
         #[arg(required = true)]
         inputs: Vec<PathBuf>,
     },
+    /// Measure the VH against human data: saccade main sequence, reaction
+    /// time, head contribution, pursuit gain, VOR gain, blink rate and
+    /// microsaccades, each from the physics, with its human band and
+    /// source, PASS or FAIL. Exit 1 if any row fails.
+    Fidelity {
+        /// Scene whose parameters the VH uses (default: the embedded one).
+        #[arg(long)]
+        scene: Option<PathBuf>,
+        /// `seed` runs the papers' laws with no latencies (profile: Seed);
+        /// default: the scene's profile.
+        #[arg(long)]
+        profile: Option<ProfileArg>,
+        /// Write fidelity.csv and PNG plots into this folder.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// Spar against a seeded random opponent for N simulated minutes,
     /// checking invariants every tick, and print a summary.
     Soak {
@@ -327,4 +343,13 @@ impl Cli {
         .into_iter()
         .find_map(|(set, name)| set.then_some(name))
     }
+}
+
+/// `--profile` values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ProfileArg {
+    /// Human latencies and limits (the default profile).
+    Human,
+    /// The seed papers' laws, no latencies.
+    Seed,
 }

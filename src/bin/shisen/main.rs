@@ -178,6 +178,18 @@ fn main() -> ExitCode {
             )
             .with_context(|| format!("cannot write {}", out.display())),
         ),
+        Some(Command::Fidelity {
+            scene,
+            profile,
+            out,
+        }) => match fidelity_cmd(scene, profile, out) {
+            Ok(true) => ExitCode::SUCCESS,
+            Ok(false) => ExitCode::from(1),
+            Err(e) => {
+                eprintln!("error: {e:#}");
+                ExitCode::from(2)
+            }
+        },
         Some(Command::Soak {
             minutes,
             seed,
@@ -214,4 +226,41 @@ fn main() -> ExitCode {
             }
         },
     }
+}
+
+/// `shisen fidelity`: the battery, its table, and its files if asked.
+fn fidelity_cmd(
+    scene: Option<std::path::PathBuf>,
+    profile: Option<ProfileArg>,
+    out: Option<std::path::PathBuf>,
+) -> Result<bool> {
+    use shisen::tools::fidelity;
+    if let Some(dir) = &out
+        && dir.exists()
+        && !dir.is_dir()
+    {
+        anyhow::bail!("--out: {} exists and is not a folder", dir.display());
+    }
+    let loaded = match &scene {
+        Some(p) => load(&p.display().to_string())?,
+        None => shisen::scene::LoadedScene::default_scene(),
+    };
+    let profile = profile.map(|p| match p {
+        ProfileArg::Human => shisen::sim::Profile::Human,
+        ProfileArg::Seed => shisen::sim::Profile::Seed,
+    });
+    let model = fidelity::model_of(&loaded, profile);
+    let (rows, curves) = fidelity::battery(&model);
+    print!("{}", fidelity::table(&rows));
+    let failed = rows.iter().filter(|r| !r.pass()).count();
+    println!(
+        "{} rows: {} pass, {failed} fail",
+        rows.len(),
+        rows.len() - failed
+    );
+    if let Some(dir) = out {
+        fidelity::write(&dir, &rows, &curves)?;
+        println!("wrote {}", dir.display());
+    }
+    Ok(failed == 0)
 }
