@@ -12,6 +12,7 @@ use crate::agent::oculomotor::{AxisCommand, GazeShiftLaw};
 use crate::face::{Face, FaceState};
 use crate::physics::body::seg;
 use crate::physics::world::{World, opp};
+use crate::util::math::{min_jerk, min_jerk_d, min_jerk_dd};
 
 /// The opponent's hands.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
@@ -182,6 +183,23 @@ pub enum Action {
         #[serde(deserialize_with = "crate::util::check::positive")]
         duration: f64,
     },
+    /// Impose a quick minimum-jerk neck turn by `yaw_deg` / `pitch_deg`
+    /// over `duration` s and hold it for `hold` s (overriding the head law):
+    /// a passive head impulse, e.g. to measure the VOR's latency.
+    TurnHead {
+        /// Yaw, deg (positive: to the VH's left).
+        #[serde(deserialize_with = "crate::util::check::finite")]
+        yaw_deg: f64,
+        /// Pitch, deg (positive: up).
+        #[serde(default, deserialize_with = "crate::util::check::finite")]
+        pitch_deg: f64,
+        /// Duration of the turn, s.
+        #[serde(deserialize_with = "crate::util::check::positive")]
+        duration: f64,
+        /// How long the turned head is held afterwards, s.
+        #[serde(default, deserialize_with = "crate::util::check::non_negative")]
+        hold: f64,
+    },
 }
 
 /// A timeline entry.
@@ -211,23 +229,44 @@ pub(super) struct Override {
     pub style: Option<GazeShiftLaw>,
 }
 
-/// An imposed sinusoidal neck motion.
+/// An imposed neck motion: a sinusoid (`ShakeHead`) or a minimum-jerk
+/// turn (`TurnHead`).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Shake {
     amplitude: DVec2,
-    freq: f64,
+    kind: ShakeKind,
     t0: f64,
     pub until: f64,
 }
 
+#[derive(Clone, Copy, Debug)]
+enum ShakeKind {
+    /// `amplitude sin(2 pi freq (t - t0))`.
+    Sine { freq: f64 },
+    /// `amplitude min_jerk((t - t0) / duration)`.
+    Turn { duration: f64 },
+}
+
 impl Shake {
     pub fn command(&self, t: f64) -> AxisCommand {
-        let w = std::f64::consts::TAU * self.freq;
-        let ph = w * (t - self.t0);
-        AxisCommand {
-            angles: self.amplitude * ph.sin(),
-            rates: self.amplitude * (w * ph.cos()),
-            accel: self.amplitude * (-w * w * ph.sin()),
+        match self.kind {
+            ShakeKind::Sine { freq } => {
+                let w = std::f64::consts::TAU * freq;
+                let ph = w * (t - self.t0);
+                AxisCommand {
+                    angles: self.amplitude * ph.sin(),
+                    rates: self.amplitude * (w * ph.cos()),
+                    accel: self.amplitude * (-w * w * ph.sin()),
+                }
+            }
+            ShakeKind::Turn { duration } => {
+                let s = (t - self.t0) / duration;
+                AxisCommand {
+                    angles: self.amplitude * min_jerk(s),
+                    rates: self.amplitude * (min_jerk_d(s) / duration),
+                    accel: self.amplitude * (min_jerk_dd(s) / (duration * duration)),
+                }
+            }
         }
     }
 }
@@ -412,9 +451,22 @@ impl Timeline {
                 } => {
                     self.shake = Some(Shake {
                         amplitude: DVec2::new(yaw_deg, pitch_deg) * (std::f64::consts::PI / 180.0),
-                        freq: frequency,
+                        kind: ShakeKind::Sine { freq: frequency },
                         t0: t,
                         until: t + duration,
+                    })
+                }
+                Action::TurnHead {
+                    yaw_deg,
+                    pitch_deg,
+                    duration,
+                    hold,
+                } => {
+                    self.shake = Some(Shake {
+                        amplitude: DVec2::new(yaw_deg, pitch_deg) * (std::f64::consts::PI / 180.0),
+                        kind: ShakeKind::Turn { duration },
+                        t0: t,
+                        until: t + duration + hold,
                     })
                 }
                 Action::Emotion {

@@ -9,7 +9,7 @@ use anyhow::{Context, Result};
 use glam::DVec3;
 
 use crate::scene::LoadedScene;
-use crate::sim::timeline::{Action, Event, Part};
+use crate::sim::timeline::{Action, Event, Hand, Part, PunchTarget};
 use crate::sim::{BodySpec, Model, Profile, PropShape, Sample, Sim};
 use crate::tools::plot::{Panel, Series, Stroke, chart};
 
@@ -132,9 +132,13 @@ pub fn battery(model: &Model) -> (Vec<Row>, Curves) {
     reaction_time(model, &mut rows);
     head_contribution(model, &mut rows, &mut curves);
     pursuit(model, &mut rows, &mut curves);
+    sinusoidal_pursuit(model, &mut rows);
     vor(model, &mut rows);
+    head_impulse(model, &mut rows);
     blinks(model, &mut rows);
+    sparring_blinks(model, &mut rows);
     microsaccades(model, &mut rows);
+    glance(model, &mut rows);
     (rows, curves)
 }
 
@@ -331,6 +335,68 @@ fn pursuit(model: &Model, rows: &mut Vec<Row>, curves: &mut Curves) {
     }
 }
 
+fn sinusoidal_pursuit(model: &Model, rows: &mut Vec<Row>) {
+    // A dot 1 m ahead swings +-10 deg at `f` Hz; the smooth eye velocity
+    // (saccades cut out and bridged) is fitted with a sinusoid at `f`.
+    const AMP: f64 = 10.0;
+    for (f, band) in [(0.5, (0.8, 1.02)), (1.0, (0.6, 0.95))] {
+        let (start, cycles) = (1.0, 4.0);
+        let dur = cycles / f;
+        let tl = [
+            hold_head(start + dur + 0.2),
+            at(
+                0.0,
+                Action::Track {
+                    body: "dot".into(),
+                    until: start + dur + 0.2,
+                },
+            ),
+            at(
+                start,
+                Action::Wave {
+                    part: Part::Body("dot".into()),
+                    amplitude: DVec3::new(AMP.to_radians().tan(), 0.0, 0.0),
+                    frequency: f,
+                    duration: dur,
+                },
+            ),
+        ];
+        let s = run(model, point(0.0, 1.0), &tl, start + dur);
+        let v = eye_velocity(&s);
+        let peak = std::f64::consts::TAU * f * AMP;
+        let saccadic: Vec<bool> = v.iter().map(|x| x.abs() > peak + 40.0).collect();
+        // Fit v = a sin + b cos over whole cycles after the first, on
+        // samples away from any saccade.
+        let w = std::f64::consts::TAU * f;
+        let (mut ss, mut sc, mut cc, mut vs, mut vc) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        for i in 0..s.len() {
+            let t = s[i].t - start;
+            if t < 1.0 / f
+                || saccadic[i.saturating_sub(15)..(i + 15).min(s.len())]
+                    .iter()
+                    .any(|&b| b)
+            {
+                continue;
+            }
+            let (sn, cs) = (w * t).sin_cos();
+            ss += sn * sn;
+            sc += sn * cs;
+            cc += cs * cs;
+            vs += v[i] * sn;
+            vc += v[i] * cs;
+        }
+        let det = ss * cc - sc * sc;
+        let (a, b) = ((vs * cc - vc * sc) / det, (vc * ss - vs * sc) / det);
+        rows.push(Row {
+            name: format!("pursuit gain, +-10 deg sinusoid at {f} Hz"),
+            value: a.hypot(b) / peak,
+            band,
+            unit: "",
+            source: "Barnes 1993, Prog. Neurobiol. 41:435 (about 0.9 to 0.5 Hz, falling above)",
+        });
+    }
+}
+
 fn vor(model: &Model, rows: &mut Vec<Row>) {
     // Fixating a far point while the head is turned 10 deg at 1 Hz.
     let tl = [
@@ -377,19 +443,155 @@ fn vor(model: &Model, rows: &mut Vec<Row>) {
     });
 }
 
+fn head_impulse(model: &Model, rows: &mut Vec<Row>) {
+    // A passive head impulse: 15 deg in 150 ms along a minimum-jerk path
+    // (peak 190 deg/s, 3800 deg/s^2, the clinical range) while the VH
+    // fixates a far point; latency from head-velocity onset to the eye's
+    // counter-rotation onset (both at 20 deg/s), gain as the ratio of eye
+    // to head velocity areas over the first 80 ms.
+    let t0 = 1.0;
+    let tl = [
+        at(
+            0.0,
+            Action::LookAt {
+                point: point(0.0, 3.0),
+                until: 2.0,
+                amount: Some(0.0),
+                style: None,
+            },
+        ),
+        at(
+            t0,
+            Action::TurnHead {
+                yaw_deg: 15.0,
+                pitch_deg: 0.0,
+                duration: 0.15,
+                hold: 0.3,
+            },
+        ),
+    ];
+    let s = run(model, point(0.0, 30.0), &tl, 1.5);
+    let v = eye_velocity(&s);
+    let head: Vec<f64> = (0..s.len())
+        .map(|i| {
+            let (a, b) = (i.saturating_sub(1), (i + 1).min(s.len() - 1));
+            (s[b].neck_actual.yaw - s[a].neck_actual.yaw).to_degrees() / (s[b].t - s[a].t)
+        })
+        .collect();
+    let onset = |x: &[f64], sign: f64| (0..s.len()).find(|&i| s[i].t > t0 && sign * x[i] > 20.0);
+    let (latency, gain) = match (onset(&head, 1.0), onset(&v, -1.0)) {
+        (Some(h), Some(e)) => {
+            let n = (0.08 / model.dt) as usize;
+            let end = (h + n).min(s.len());
+            let eye: f64 = v[h..end].iter().sum();
+            let hd: f64 = head[h..end].iter().sum();
+            ((s[e].t - s[h].t) * 1e3, -eye / hd)
+        }
+        _ => (f64::NAN, f64::NAN),
+    };
+    const HIT: &str = "Aw et al. 1996, J. Neurophysiol. 76:4009 (latency 7-10 ms, gain about 0.95)";
+    rows.push(Row {
+        name: "VOR latency, 15 deg head impulse".into(),
+        value: latency,
+        band: (5.0, 15.0),
+        unit: "ms",
+        source: HIT,
+    });
+    rows.push(Row {
+        name: "VOR gain, head impulse, first 80 ms".into(),
+        value: gain,
+        band: (0.8, 1.1),
+        unit: "",
+        source: HIT,
+    });
+}
+
 fn blinks(model: &Model, rows: &mut Vec<Row>) {
     let minutes = 5.0;
     let s = run(model, point(0.0, 30.0), &[], minutes * 60.0);
-    let n = s
-        .windows(2)
-        .filter(|w| w[0].blink <= 0.5 && w[1].blink > 0.5)
-        .count();
+    let n = blink_count(&s);
     rows.push(Row {
         name: "blink rate at rest (opponent idle, 5 min)".into(),
         value: n as f64 / minutes,
         band: (8.0, 26.0),
         unit: "/min",
         source: "Bentivoglio et al. 1997, Mov. Disord. 12:1028 (17 +- 13 /min)",
+    });
+}
+
+/// Rising blink edges in `s`.
+fn blink_count(s: &[Sample]) -> usize {
+    s.windows(2)
+        .filter(|w| w[0].blink <= 0.5 && w[1].blink > 0.5)
+        .count()
+}
+
+/// Alternating jabs at the VH's head every `every` s from 1 s to `until`.
+fn jabs(every: f64, until: f64, speed: f64) -> Vec<Event> {
+    let mut tl = Vec::new();
+    let mut k = 0;
+    while 1.0 + every * (k as f64) < until {
+        let hand = if k % 2 == 0 { Hand::Left } else { Hand::Right };
+        tl.push(at(
+            1.0 + every * k as f64,
+            Action::Punch {
+                hand,
+                target: PunchTarget::Head,
+                speed,
+            },
+        ));
+        k += 1;
+    }
+    tl
+}
+
+fn sparring_blinks(model: &Model, rows: &mut Vec<Row>) {
+    // The VH attacks and the opponent jabs every 2.5 s, for 3 minutes.
+    let minutes = 3.0;
+    let mut m = model.clone();
+    m.params.behaviour.attacks = true;
+    let tl = jabs(2.5, minutes * 60.0, 5.0);
+    let s = run(&m, point(0.0, 30.0), &tl, minutes * 60.0);
+    rows.push(Row {
+        name: "blink rate while sparring (3 min)".into(),
+        value: blink_count(&s) as f64 / minutes,
+        band: (3.0, 16.0),
+        unit: "/min",
+        source: "Bentivoglio et al. 1997 (reading 4.5 +- 4.5 /min); rest rate drops under visual demand",
+    });
+}
+
+fn glance(model: &Model, rows: &mut Vec<Row>) {
+    // Eight 5 m/s jabs; a glance lasts from the eyes' arrival on the glove
+    // (line of sight within 5 deg of it, as chosen target) to the onset of
+    // the saccade that leaves it.
+    let tl = jabs(2.0, 16.0, 5.0);
+    let s = run(model, point(0.0, 30.0), &tl, 17.0);
+    let v = eye_velocity(&s);
+    let on_glove = |x: &Sample| x.gaze_target.ends_with("glove");
+    let mut durations = Vec::new();
+    let mut i = 0;
+    while i < s.len() {
+        if on_glove(&s[i]) && s[i].los_error[0].to_degrees() < 5.0 {
+            let arrive = s[i].t;
+            while i < s.len() && on_glove(&s[i]) {
+                i += 1;
+            }
+            while i < s.len() && v[i].abs() < 50.0 {
+                i += 1;
+            }
+            if i < s.len() {
+                durations.push((s[i].t - arrive) * 1e3);
+            }
+        }
+        i += 1;
+    }
+    rows.push(Row {
+        name: format!("glance at a 5 m/s jab, median of {}", durations.len()),
+        value: median(&mut durations),
+        band: (150.0, 500.0),
+        unit: "ms",
+        source: "Rayner 2009, Q. J. Exp. Psychol. 62:1457 (fixations 180-330 ms in scenes and search)",
     });
 }
 

@@ -220,12 +220,16 @@ impl Oculomotor {
             .aim
             .step(&p.timing, input.point, input.target_id, cyclops, t, dt, rng);
         let target = aim.point;
-        let head_angvel = self.aim.vestibular(&p.timing, input.head_angvel, dt); // (H4)
-        // Each eye's goal: the aim's direction from that eye, head frame.
-        let point = head_inv * target;
+        let (felt_rot, head_angvel) =
+            self.aim
+                .vestibular(&p.timing, input.head_rot, input.head_angvel, dt); // (H4)
+        let felt_inv = felt_rot.inverse();
+        // Each eye's goal: the aim's direction from that eye, in the head
+        // frame as the vestibular signal reports it.
+        let point = felt_inv * target;
         let goal = input
             .eye_pos
-            .map(|c| angles_to(head_inv * c, point).clamp(-range, range));
+            .map(|c| angles_to(felt_inv * c, point).clamp(-range, range));
         let new_target = aim.new_target;
         let target_rate = match self.prev_goal {
             Some(prev) if !new_target => [(goal[0] - prev[0]) / dt, (goal[1] - prev[1]) / dt],
@@ -341,7 +345,7 @@ impl Oculomotor {
                         EyeInput::occluded()
                     }
                 });
-                let w = head_rate_from_angular_velocity(head_inv * head_angvel);
+                let w = head_rate_from_angular_velocity(felt_inv * head_angvel);
                 let (l, r) = self.pursuit.step(&p.pursuit, dt, &inputs[0], &inputs[1], w);
                 let (rl, rr) = self.pursuit.rates();
                 // Idle gaze: conjugate microsaccades and drift on top.

@@ -30,7 +30,7 @@
 //! target itself every tick and nothing is drawn from the random stream:
 //! the seed's laws exactly.
 
-use glam::DVec3;
+use glam::{DQuat, DVec3};
 use rand::Rng;
 use rand_distr::{Distribution, Normal};
 use serde::{Deserialize, Serialize};
@@ -185,7 +185,7 @@ pub struct Aim {
     point: DVec3,
     last_target: Option<DVec3>,
     drive: DelayLine<DVec3>,
-    vestibular: DelayLine<DVec3>,
+    vestibular: DelayLine<(DQuat, DVec3)>,
 }
 
 impl Aim {
@@ -254,10 +254,18 @@ impl Aim {
         step
     }
 
-    /// The head angular velocity the VOR acts on now (H4): the vestibular
-    /// signal `vor_latency` late.
-    pub fn vestibular(&mut self, p: &TimingParams, angvel: DVec3, dt: f64) -> DVec3 {
-        self.vestibular.push(angvel, p.vor_latency, dt)
+    /// The head orientation and angular velocity the eyes act on now (H4):
+    /// what the vestibular signal says, `vor_latency` late. A head moved
+    /// from outside drags the eyes along for that long before they
+    /// counter-rotate.
+    pub fn vestibular(
+        &mut self,
+        p: &TimingParams,
+        rot: DQuat,
+        angvel: DVec3,
+        dt: f64,
+    ) -> (DQuat, DVec3) {
+        self.vestibular.push((rot, angvel), p.vor_latency, dt)
     }
 }
 
