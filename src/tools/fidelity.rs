@@ -45,6 +45,8 @@ impl Row {
 pub struct Curves {
     /// (amplitude deg, duration ms, band lo, band hi).
     pub main_sequence: Vec<(f64, f64, f64, f64)>,
+    /// (amplitude deg, peak velocity deg/s, band lo, band hi).
+    pub peak_velocity: Vec<(f64, f64, f64, f64)>,
     /// (target deg/s, gain, band lo, band hi).
     pub pursuit: Vec<(f64, f64, f64, f64)>,
     /// (gaze amplitude deg, head amplitude deg, band lo, band hi).
@@ -194,15 +196,22 @@ fn main_sequence(model: &Model, rows: &mut Vec<Row>, curves: &mut Curves) {
             unit: "ms",
             source: MAIN_SEQ,
         });
-        if amp == 20.0 {
-            rows.push(Row {
-                name: "saccade peak velocity, 20 deg".into(),
-                value: peak,
-                band: (300.0, 600.0),
-                unit: "deg/s",
-                source: "Baloh et al. 1975, Neurology 25:1065 (normal range)",
-            });
-        }
+        // Bahill, Clark & Stark's normal main sequence: about 260, 400, 530
+        // and 650 deg/s at 5, 10, 20 and 40 deg; bands about +-40 %.
+        let vband = match amp as u32 {
+            5 => (150.0, 400.0),
+            10 => (250.0, 550.0),
+            20 => (300.0, 650.0),
+            _ => (400.0, 800.0),
+        };
+        curves.peak_velocity.push((amp, peak, vband.0, vband.1));
+        rows.push(Row {
+            name: format!("saccade peak velocity, {amp:.0} deg"),
+            value: peak,
+            band: vband,
+            unit: "deg/s",
+            source: "Bahill, Clark & Stark 1975, Math. Biosci. 24:191 (normal main sequence)",
+        });
     }
 }
 
@@ -704,11 +713,14 @@ pub fn write(dir: &Path, rows: &[Row], curves: &Curves) -> Result<()> {
         &dir.join("main_sequence.png"),
         (800, 450),
         "saccade amplitude, deg",
-        &[panel(
-            "Saccade duration vs amplitude",
-            "ms",
-            &curves.main_sequence,
-        )],
+        &[
+            panel("Saccade duration vs amplitude", "ms", &curves.main_sequence),
+            panel(
+                "Saccade peak velocity vs amplitude",
+                "deg/s",
+                &curves.peak_velocity,
+            ),
+        ],
         &[],
     )?;
     chart(
