@@ -8,6 +8,7 @@ use egui_plot::{Legend, Line, Plot, PlotPoints};
 use crate::face::tables::{ActionUnit, Emotion};
 use crate::face::timing::{Pattern, Speed};
 use crate::physics::body::Group;
+use crate::sim::blows::{BlowKind, Fighter};
 use crate::sim::timeline::{Action, Event};
 
 use super::session::Session;
@@ -92,10 +93,30 @@ pub fn hud(ui: &mut egui::Ui, s: &Session, pads: usize, render_ms: f32) {
             }
         }
         ui.separator();
+        let tally = s.sim.tally();
         ui.label(big(format!(
-            "hits landed {}  taken {}",
-            s.hits.landed, s.hits.taken
-        )));
+            "hits landed {}  taken {}  blocked {} / {}",
+            tally.opponent_hits, tally.vh_hits, tally.opponent_blocked, tally.vh_blocked
+        )))
+        .on_hover_text(
+            "blows (contact impulse over 2 N s): your hits on the VH, its hits on you, \
+             your punches its guard stopped / its punches yours stopped",
+        );
+        if let Some(lb) = s.last_blow.as_ref().filter(|lb| s.sim.time() - lb.t < 2.0) {
+            let b = &lb.blow;
+            let who = match b.by {
+                Fighter::Opponent => "you",
+                Fighter::Vh => "VH",
+            };
+            let what = match b.kind {
+                BlowKind::Hit => "hit",
+                BlowKind::Block => "blocked on",
+            };
+            ui.label(big(format!(
+                "{who}: {what} {} {:.1} N s",
+                b.part, b.impulse
+            )));
+        }
         ui.separator();
         let mut clock = format!("t = {:.2} s", s.sim.time());
         if s.clock.paused {

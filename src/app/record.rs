@@ -99,6 +99,7 @@ mod tests {
                 hand: Hand::Right,
                 target: PunchTarget::Point(DVec3::new(0.13, 1.55, 0.16)),
                 speed: 6.0,
+                through: None,
             },
         });
         let text = r.scene_text(2.5);

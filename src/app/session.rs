@@ -9,9 +9,8 @@ use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
 use crate::input::{Intent, OpponentControl};
-use crate::physics::body::seg;
-use crate::physics::world::opp;
 use crate::scene::LoadedScene;
+use crate::sim::blows::Blow;
 use crate::sim::timeline::Event;
 use crate::sim::{DT, Sample, Sim};
 use crate::tools::trace::TraceWriter;
@@ -86,14 +85,13 @@ impl Clock {
     }
 }
 
-/// Hits as rising edges of contact.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Hits {
-    /// Your gloves landed on the VH's head.
-    pub landed: u32,
-    /// The VH's gloves landed on your head.
-    pub taken: u32,
-    touching: [bool; 2],
+/// The last blow (hit or block, either way) and when it came.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LastBlow {
+    /// Simulation time, s.
+    pub t: f64,
+    /// The blow.
+    pub blow: Blow,
 }
 
 /// A running session.
@@ -109,7 +107,7 @@ pub struct Session {
     /// Pause / slow motion.
     pub clock: Clock,
     /// Hit counts.
-    pub hits: Hits,
+    pub last_blow: Option<LastBlow>,
     /// Recent samples for the plots (every 10th tick).
     pub history: VecDeque<Sample>,
     /// Recording in progress.
@@ -127,7 +125,7 @@ impl Session {
             loaded,
             source,
             clock: Clock::default(),
-            hits: Hits::default(),
+            last_blow: None,
             history: VecDeque::new(),
             recorder: None,
             trace: None,
@@ -189,20 +187,11 @@ impl Session {
     pub fn step(&mut self) {
         let s = self.sim.step();
         let sample = s.clone();
-        let w = &self.sim.world;
-        let landed = sample.head_hit;
-        let taken = [seg::GLOVE_L, seg::GLOVE_R]
-            .iter()
-            .any(|&g| w.in_contact(g, w.opponent[opp::HEAD]));
-        for (k, now) in [landed, taken].into_iter().enumerate() {
-            if now && !self.hits.touching[k] {
-                if k == 0 {
-                    self.hits.landed += 1;
-                } else {
-                    self.hits.taken += 1;
-                }
-            }
-            self.hits.touching[k] = now;
+        if let Some(b) = sample.blows.last() {
+            self.last_blow = Some(LastBlow {
+                t: sample.t,
+                blow: b.clone(),
+            });
         }
         if let Some((path, tw)) = &mut self.trace
             && let Err(e) = tw.push(&sample)

@@ -108,6 +108,7 @@ impl OpponentControl {
                         hand,
                         target: PunchTarget::Point(to),
                         speed: PUNCH_SPEED,
+                        through: None,
                     },
                 });
                 continue;

@@ -465,9 +465,17 @@ impl World {
 
     /// Whether two bodies are touching now.
     pub fn in_contact(&self, a: usize, b: usize) -> bool {
+        self.contact_impulse(a, b).is_some()
+    }
+
+    /// The contact impulse between bodies `a` and `b` in the last step,
+    /// N s (the solver's normal impulses, summed as vectors), or `None`
+    /// if they are not touching.
+    pub fn contact_impulse(&self, a: usize, b: usize) -> Option<f32> {
         self.phys
             .contact_pair(self.bodies[a].collider, self.bodies[b].collider)
-            .is_some_and(|p| p.has_any_active_contact())
+            .filter(|p| p.has_any_active_contact())
+            .map(|p| p.total_impulse().length())
     }
 }
 

@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::agent::behaviour::{ActionKind, EYES_ON_TARGET};
 use crate::sim::Sample;
+use crate::sim::blows::{BlowKind, Fighter};
 
 /// A named angle of the VH for expectations.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
@@ -163,6 +164,41 @@ pub enum Expect {
         /// Whether the head is hit.
         hit: bool,
     },
+    /// Blows of a kind (hits landed, punches blocked) thrown by one side
+    /// (see `sim::blows`) in [from, to]: at least `at_least`, and at most
+    /// `at_most` if given.
+    Blows {
+        /// `Hit` or `Block`.
+        kind: BlowKind,
+        /// Who threw them: `Vh` or `Opponent`.
+        by: Fighter,
+        /// Window start, s.
+        #[serde(deserialize_with = "crate::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "crate::util::check::non_negative")]
+        to: f64,
+        /// Fewest blows.
+        #[serde(default)]
+        at_least: u32,
+        /// Most blows, if bounded.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        at_most: Option<u32>,
+    },
+    /// The head's direction in the world turns at least `at_least_deg`
+    /// away from where it pointed at the start of [from, to] (a hit rocks
+    /// the head).
+    HeadRotation {
+        /// Least peak rotation, deg.
+        #[serde(deserialize_with = "crate::util::check::non_negative")]
+        at_least_deg: f64,
+        /// Window start, s.
+        #[serde(deserialize_with = "crate::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "crate::util::check::non_negative")]
+        to: f64,
+    },
     /// Every state value stays finite for the whole run.
     Finite,
 }
@@ -193,6 +229,8 @@ struct Acc {
     punching: bool,
     /// Blinks: whether the lids were more than half shut last tick.
     shut: bool,
+    /// HeadRotation: the head's world direction at the window's start.
+    origin: Option<glam::DVec2>,
 }
 
 impl Expect {
@@ -207,6 +245,8 @@ impl Expect {
             | Expect::AngleReaches { from, to, .. }
             | Expect::Blinks { from, to, .. }
             | Expect::HeadHit { from, to, .. }
+            | Expect::Blows { from, to, .. }
+            | Expect::HeadRotation { from, to, .. }
             | Expect::ActionShare { from, to, .. } => Some((*from, *to)),
             Expect::AngleBelow { from, to, .. } => {
                 Some((from.unwrap_or(0.0), to.unwrap_or(duration)))
@@ -329,6 +369,24 @@ impl Checker {
                 Expect::HeadHit { from, to, .. } => {
                     if inside(s.t, *from, *to) && s.head_hit && a.first.is_none() {
                         a.first = Some(s.t);
+                    }
+                }
+                Expect::Blows {
+                    kind, by, from, to, ..
+                } => {
+                    if inside(s.t, *from, *to) {
+                        a.hits += s
+                            .blows
+                            .iter()
+                            .filter(|b| b.kind == *kind && b.by == *by)
+                            .count() as u64;
+                    }
+                }
+                Expect::HeadRotation { from, to, .. } => {
+                    if inside(s.t, *from, *to) {
+                        let o = *a.origin.get_or_insert(s.head_world);
+                        a.n += 1;
+                        a.max = a.max.max((s.head_world - o).length().to_degrees());
                     }
                 }
                 Expect::Finite => {
@@ -481,6 +539,32 @@ fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
                 .map_or("no hit".into(), |t| format!("hit at {t:.3} s")),
             value: a.first.map_or(0.0, |_| 1.0),
             pass: a.first.is_some() == *hit,
+        },
+        Expect::Blows {
+            kind,
+            by,
+            from,
+            to,
+            at_least,
+            at_most,
+        } => Verdict {
+            what: format!(
+                "{kind:?} by {by:?}: at least {at_least}{} in [{from}, {to}] s",
+                at_most.map_or(String::new(), |m| format!(", at most {m}"))
+            ),
+            measured: format!("{}", a.hits),
+            value: a.hits as f64,
+            pass: a.hits >= u64::from(*at_least) && at_most.is_none_or(|m| a.hits <= u64::from(m)),
+        },
+        Expect::HeadRotation {
+            at_least_deg,
+            from,
+            to,
+        } => Verdict {
+            what: format!("the head turns >= {at_least_deg} deg in [{from}, {to}] s"),
+            measured: format!("peak {:.2} deg", a.max),
+            value: a.max,
+            pass: a.n > 0 && a.max >= *at_least_deg,
         },
         Expect::Finite => Verdict {
             what: "state finite throughout (no NaN)".into(),

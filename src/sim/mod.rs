@@ -7,6 +7,7 @@
 //! The static description lives in a [`Model`]; `Sim` holds only what
 //! evolves.
 
+pub mod blows;
 pub mod expect;
 pub mod model;
 mod sample;
@@ -29,6 +30,7 @@ use crate::physics::world::opp;
 use crate::physics::world::{PropSpec, World};
 use crate::util::delay::DelayLine;
 use crate::util::math::{JointAngles, angle_between, yaw_pitch_of};
+use blows::{Blows, Tally};
 pub use model::{BodySpec, DT, Model, Params, Profile, PropShape};
 pub use sample::Sample;
 use timeline::{Event, Timeline};
@@ -95,6 +97,8 @@ pub struct Sim {
     fixated: Option<String>,
     /// Times the VH was reset after a physics explosion.
     pub resets: u32,
+    /// Hits and blocks both ways.
+    blows: Blows,
     last: Option<Sample>,
 }
 
@@ -110,6 +114,7 @@ impl Sim {
     /// at equal times keep their order).
     pub fn new(model: Model, timeline: &[Event]) -> Self {
         let mut world = World::new(model.plan.clone(), model.dt);
+        let blows = Blows::new(&world);
         let mut scripted = Vec::new();
         for k in 0..3 {
             let b = world.opponent[k];
@@ -159,6 +164,7 @@ impl Sim {
             names,
             fixated: None,
             resets: 0,
+            blows,
             last: None,
         }
     }
@@ -184,6 +190,11 @@ impl Sim {
     /// Simulation time now, s.
     pub fn time(&self) -> f64 {
         self.tick as f64 * self.model.dt
+    }
+
+    /// Hits landed and punches blocked so far, both ways.
+    pub fn tally(&self) -> Tally {
+        self.blows.tally
     }
 
     /// The last recorded sample.
@@ -434,6 +445,7 @@ impl Sim {
         };
         let mut sample = self.sample(&gaze.choice, &gaze.out.eyes.map(|e| e.angles), neck_target);
         sample.reset = reset;
+        sample.blows = self.blows.step(&self.world, self.time());
         self.fixated = (sample.los_error[0].max(sample.los_error[1]) < EYES_ON_TARGET)
             .then(|| sample.gaze_target.clone());
         self.last = Some(sample);
@@ -497,6 +509,7 @@ impl Sim {
             emotion: self.face_state.emotion,
             blink: self.face_state.blink.closure(&self.model.face.params.blink),
             reset: false,
+            blows: Vec::new(),
         }
     }
 }

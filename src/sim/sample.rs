@@ -3,6 +3,7 @@
 
 use glam::{DVec2, DVec3};
 
+use super::blows::Blow;
 use crate::agent::attention::Source;
 use crate::agent::behaviour::ActionKind;
 use crate::face::tables::Emotion;
@@ -54,4 +55,6 @@ pub struct Sample {
     pub blink: f64,
     /// The physics blew up this tick and the VH was reset to rest.
     pub reset: bool,
+    /// Blows (hits and blocks, both ways) decided this tick.
+    pub blows: Vec<Blow>,
 }

@@ -79,6 +79,15 @@ pub enum Action {
         /// Peak glove speed, m/s.
         #[serde(deserialize_with = "crate::util::check::positive")]
         speed: f64,
+        /// How far behind the contact point the punch is aimed, m
+        /// (`Head` and `Body` targets; default [`FOLLOW_THROUGH`]): a
+        /// committed punch is thrown deeper and lands harder.
+        #[serde(
+            default,
+            deserialize_with = "crate::util::check::opt_non_negative",
+            skip_serializing_if = "Option::is_none"
+        )]
+        through: Option<f64>,
     },
     /// Wave a part sinusoidally about its current position.
     Wave {
@@ -201,6 +210,15 @@ pub enum Action {
         hold: f64,
     },
 }
+
+/// How far behind the contact point a scripted punch at the head or body
+/// is aimed, m. A punch is thrown through its target, so the glove meets
+/// the surface still moving (at about half its peak speed with a
+/// minimum-jerk path) and the physics, not the path, stops it: it lands a
+/// blow (`sim::blows`). Kept short for now: the glove's drive is a stiff
+/// spring toward the path, and a deeper aim would push it through a guard
+/// that has met it.
+pub const FOLLOW_THROUGH: f64 = 0.05;
 
 /// A timeline entry.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
@@ -376,17 +394,23 @@ impl Timeline {
                     hand,
                     target,
                     speed,
+                    through,
                 } => {
+                    let through = through.unwrap_or(FOLLOW_THROUGH);
                     let glove_r = world.plan.glove_radius as f64;
+                    // Aimed through the target (follow-through):
+                    // the path ends FOLLOW_THROUGH behind the point where the
+                    // glove's surface meets the target's, so the glove
+                    // arrives at speed and the physics stops it.
                     let (aim, radius) = match target {
                         PunchTarget::Head => (
                             world.seg(seg::HEAD).translation().as_dvec3(),
-                            0.10 + glove_r - 0.02,
+                            0.10 + glove_r - through,
                         ),
                         PunchTarget::Body => (
                             world.seg(seg::TORSO).translation().as_dvec3()
                                 + DVec3::new(0.0, 0.1, 0.1),
-                            glove_r - 0.02,
+                            glove_r - through,
                         ),
                         PunchTarget::Point(p) => (p, 0.0),
                     };
@@ -396,7 +420,6 @@ impl Timeline {
                     };
                     let b = part_body(world, &part);
                     let from = world.rb(b).translation().as_dvec3();
-                    // Stop where the glove's surface just meets the target's.
                     let dir = (aim - from).normalize_or(DVec3::NEG_Z);
                     let to = aim - dir * radius;
                     if let Some(tr) = self.track_mut(b) {

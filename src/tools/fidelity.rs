@@ -547,6 +547,7 @@ fn jabs(every: f64, until: f64, speed: f64) -> Vec<Event> {
                 hand,
                 target: PunchTarget::Head,
                 speed,
+                through: None,
             },
         ));
         k += 1;

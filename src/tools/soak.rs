@@ -88,6 +88,7 @@ impl SparringBot {
                     hand,
                     target,
                     speed,
+                    through: None,
                 },
             );
         }
@@ -177,6 +178,8 @@ pub struct SoakReport {
     pub head_hit_ticks: u64,
     /// Physics explosions recovered from.
     pub resets: u32,
+    /// Blows both ways (hits landed and punches blocked, `sim::blows`).
+    pub tally: crate::sim::blows::Tally,
     /// Largest excursion of an eye or neck angle beyond its range, deg.
     pub worst_limit_excess_deg: f64,
     /// Resident memory at the first and last check, KiB (0 where /proc is missing).
@@ -285,5 +288,6 @@ pub fn soak(minutes: f64, seed: u64, mut progress: impl FnMut(f64) -> bool) -> S
     r.events = bot.events;
     r.vh_punches = sim.behaviour.punches_thrown;
     r.resets = sim.resets;
+    r.tally = sim.tally();
     r
 }

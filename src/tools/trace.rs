@@ -6,6 +6,7 @@ use std::fmt::Write as _;
 use std::io::{self, Write};
 
 use crate::sim::Sample;
+use crate::sim::blows::BlowKind;
 
 type Cell = fn(&Sample, &mut String);
 
@@ -58,6 +59,16 @@ const COLUMNS: &[(&str, Cell)] = &[
     }),
     ("head_hit", |s, o| {
         o.push_str(if s.head_hit { "1" } else { "0" })
+    }),
+    ("blows", |s, o| {
+        for (i, b) in s.blows.iter().enumerate() {
+            let kind = match b.kind {
+                BlowKind::Hit => "hit",
+                BlowKind::Block => "block",
+            };
+            let sep = if i > 0 { ";" } else { "" };
+            let _ = write!(o, "{sep}{kind}:{}:{}:{:.2}", b.by.name(), b.part, b.impulse);
+        }
     }),
     ("emotion", |s, o| {
         let _ = write!(o, "{:?}", s.emotion);

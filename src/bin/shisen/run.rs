@@ -262,6 +262,10 @@ pub fn soak_cmd(minutes: f64, seed: u64, force: bool) -> Result<bool> {
         r.events, r.vh_punches, r.head_hit_ticks, r.resets
     );
     println!(
+        "  blows: the opponent landed {} hits ({} blocked), the VH {} ({} blocked)",
+        r.tally.opponent_hits, r.tally.opponent_blocked, r.tally.vh_hits, r.tally.vh_blocked
+    );
+    println!(
         "  worst eye/neck excursion past its range {:.2} deg; resident memory {} -> {} KiB",
         r.worst_limit_excess_deg, r.rss_kib.0, r.rss_kib.1
     );
