@@ -502,3 +502,28 @@ impl Timeline {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A `TurnHead` starts and ends at rest, reaches its amplitude at the
+    /// end of its duration, and peaks at 1.875 A / T halfway (minimum jerk).
+    #[test]
+    fn turn_head_is_a_minimum_jerk_impulse() {
+        let amp = 15f64.to_radians();
+        let s = Shake {
+            amplitude: DVec2::new(amp, 0.0),
+            kind: ShakeKind::Turn { duration: 0.15 },
+            t0: 1.0,
+            until: 1.45,
+        };
+        assert_eq!(s.command(1.0).angles.x, 0.0);
+        assert_eq!(s.command(1.0).rates.x, 0.0);
+        assert!((s.command(1.15).angles.x - amp).abs() < 1e-12);
+        assert!(s.command(1.15).rates.x.abs() < 1e-9);
+        assert!((s.command(1.3).angles.x - amp).abs() < 1e-12, "held");
+        let peak = s.command(1.075).rates.x;
+        assert!((peak - 1.875 * amp / 0.15).abs() < 1e-9, "{peak}");
+    }
+}
