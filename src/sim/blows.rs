@@ -78,6 +78,11 @@ pub struct Tally {
     pub vh_blocked: u32,
     /// The opponent's punches the VH's guard stopped.
     pub opponent_blocked: u32,
+    /// The opponent's punches stopped dead on the way out by the VH's guard
+    /// (the glove lost over half its speed against a glove or forearm).
+    pub opponent_guarded: u32,
+    /// The same for the VH's punches against the opponent's guard.
+    pub vh_guarded: u32,
 }
 
 impl Tally {
@@ -120,6 +125,9 @@ struct Pair {
 #[derive(Clone, Debug)]
 pub struct Blows {
     pairs: Vec<Pair>,
+    /// Gloves touching the other fighter this step, with what they touch
+    /// (a hit target, or the guard).
+    touching: Vec<(usize, BlowKind)>,
     /// Totals so far.
     pub tally: Tally,
 }
@@ -169,7 +177,25 @@ impl Blows {
         }
         Blows {
             pairs,
+            touching: Vec::new(),
             tally: Tally::default(),
+        }
+    }
+
+    /// Gloves (body indices) touching the other fighter this step, each
+    /// with `Hit` if it touches the head or torso, else `Block`.
+    pub fn touching(&self) -> &[(usize, BlowKind)] {
+        &self.touching
+    }
+
+    /// A punch by `by` was stopped on the way out (see
+    /// `Timeline::recoil`), by the guard or by the target itself.
+    pub fn punch_stopped(&mut self, by: Fighter, on: BlowKind) {
+        if on == BlowKind::Block {
+            match by {
+                Fighter::Opponent => self.tally.opponent_guarded += 1,
+                Fighter::Vh => self.tally.vh_guarded += 1,
+            }
         }
     }
 
@@ -177,6 +203,7 @@ impl Blows {
     /// now (usually none).
     pub fn step(&mut self, world: &World, t: f64) -> Vec<Blow> {
         let mut out = Vec::new();
+        self.touching.clear();
         for p in &mut self.pairs {
             if p.episode
                 .as_ref()
@@ -186,6 +213,12 @@ impl Blows {
             }
             if let Some(j) = world.contact_impulse(p.glove, p.part) {
                 let striker = !p.glove_on_glove || closing(world, p.glove, p.part);
+                match self.touching.iter_mut().find(|g| g.0 == p.glove) {
+                    // A hit target outranks the guard.
+                    Some(g) if p.kind == BlowKind::Hit => g.1 = BlowKind::Hit,
+                    Some(_) => {}
+                    None => self.touching.push((p.glove, p.kind)),
+                }
                 let e = p.episode.get_or_insert(Episode {
                     started: t,
                     last_contact: t,

@@ -445,7 +445,15 @@ impl Sim {
         };
         let mut sample = self.sample(&gaze.choice, &gaze.out.eyes.map(|e| e.angles), neck_target);
         sample.reset = reset;
-        sample.blows = self.blows.step(&self.world, self.time());
+        let t = self.time();
+        sample.blows = self.blows.step(&self.world, t);
+        for (g, on) in self.blows.touching().to_vec() {
+            let rb = self.world.rb(g);
+            let (at, v) = (rb.translation().as_dvec3(), rb.linvel().as_dvec3());
+            if self.timeline.recoil(g, t, at, v, self.model.dt) {
+                self.blows.punch_stopped(blows::Fighter::Opponent, on);
+            }
+        }
         self.fixated = (sample.los_error[0].max(sample.los_error[1]) < EYES_ON_TARGET)
             .then(|| sample.gaze_target.clone());
         self.last = Some(sample);

@@ -353,6 +353,26 @@ impl Timeline {
             .map(|(_, t, _)| t)
     }
 
+    /// A scripted glove at `at` moving at `v` touches the other fighter:
+    /// if the contact has stopped it (its speed along its path has fallen
+    /// below half the path's), a punch on its way out comes back from
+    /// where the glove really is ([`Track::recoil`]). A glove that only
+    /// grazes a guard keeps going.
+    /// Returns whether it did.
+    pub fn recoil(&mut self, body: usize, t: f64, at: DVec3, v: DVec3, dt: f64) -> bool {
+        if let Some((_, tr, hist)) = self.tracks.iter_mut().find(|(b, ..)| *b == body)
+            && let path = (hist[0] - hist[1]) / dt
+            && path.length() > 0.5
+            && v.dot(path.normalize()) < 0.5 * path.length()
+            && tr.recoil(t, at)
+        {
+            // Restart the finite differences at the real position.
+            *hist = [at, at];
+            return true;
+        }
+        false
+    }
+
     /// Drive the scripted bodies to where their tracks are at `t + dt`,
     /// with the track's velocity and acceleration (finite differences of
     /// its last three positions).

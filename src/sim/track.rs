@@ -87,6 +87,9 @@ impl Seg {
 pub struct Track {
     rest: DVec3,
     queue: VecDeque<Seg>,
+    /// While a punch is on its way out: where it started, the duration of
+    /// its way back, and when the way out ends.
+    punch: Option<(DVec3, f64, f64)>,
 }
 
 impl Track {
@@ -95,6 +98,7 @@ impl Track {
         Track {
             rest: p,
             queue: VecDeque::new(),
+            punch: None,
         }
     }
 
@@ -119,6 +123,7 @@ impl Track {
         let p = self.position(t);
         self.queue.clear();
         self.rest = p;
+        self.punch = None;
         p
     }
 
@@ -151,7 +156,30 @@ impl Track {
             t0: t + dur,
             dur,
         });
+        self.punch = Some((from, dur, t + dur));
         dur
+    }
+
+    /// The glove struck something at `t`, where it really is `at`: if a
+    /// punch is on its way out, it ends there and comes straight back (an
+    /// arm recoils from the impact instead of pushing on along its path).
+    /// Returns whether it did.
+    pub fn recoil(&mut self, t: f64, at: DVec3) -> bool {
+        match self.punch {
+            Some((origin, back, out_end)) if t < out_end => {
+                self.queue.clear();
+                self.rest = at;
+                self.punch = None;
+                self.queue.push_back(Seg::Reach {
+                    from: at,
+                    to: origin,
+                    t0: t,
+                    dur: back,
+                });
+                true
+            }
+            _ => false,
+        }
     }
 
     /// Wave about the current position.
@@ -203,6 +231,23 @@ mod tests {
         assert!((v - 6.0).abs() < 0.01, "peak speed {v}");
         assert!((tr.position(1.0 + dur) - to).length() < 1e-9);
         assert!(tr.position(1.0 + 2.0 * dur + 0.1).length() < 1e-9);
+    }
+
+    /// A punch stopped on its way out comes back from where the glove
+    /// really is, over the back stroke's time; once the way out is over
+    /// there is nothing to recoil from.
+    #[test]
+    fn a_stopped_punch_recoils_from_where_it_is() {
+        let mut tr = Track::new(DVec3::ZERO);
+        let dur = tr.punch(1.0, DVec3::new(0.0, 0.0, -0.6), 6.0);
+        let hit = DVec3::new(0.01, 0.0, -0.3);
+        assert!(tr.recoil(1.0 + dur / 2.0, hit));
+        assert!((tr.position(1.0 + dur / 2.0) - hit).length() < 1e-12);
+        assert!(tr.position(1.0 + 1.5 * dur + 1e-6).length() < 1e-9);
+        assert!(!tr.recoil(1.0 + 2.0 * dur, hit), "no punch left");
+        let mut late = Track::new(DVec3::ZERO);
+        let d = late.punch(0.0, DVec3::X, 6.0);
+        assert!(!late.recoil(d + 0.01, DVec3::X), "on its way back already");
     }
 
     #[test]

@@ -261,9 +261,10 @@ pub fn soak_cmd(minutes: f64, seed: u64, force: bool) -> Result<bool> {
         "  {} opponent events, {} VH punches, {} head-contact ticks, {} physics resets",
         r.events, r.vh_punches, r.head_hit_ticks, r.resets
     );
+    let t = &r.tally;
     println!(
-        "  blows: the opponent landed {} hits ({} blocked), the VH {} ({} blocked)",
-        r.tally.opponent_hits, r.tally.opponent_blocked, r.tally.vh_hits, r.tally.vh_blocked
+        "  blows: the opponent landed {} hits ({} blocked, {} punches stopped dead by the VH's guard), the VH {} ({} blocked)",
+        t.opponent_hits, t.opponent_blocked, t.opponent_guarded, t.vh_hits, t.vh_blocked
     );
     println!(
         "  worst eye/neck excursion past its range {:.2} deg; resident memory {} -> {} KiB",
