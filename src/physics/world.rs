@@ -439,8 +439,22 @@ impl World {
         }
         self.plan.segments.iter().enumerate().find_map(|(i, s)| {
             let w = self.seg(i).angvel().length();
-            (!w.is_finite() || w > max_angvel)
-                .then(|| format!("{} spinning at {w:.0} rad/s", s.name))
+            (!w.is_finite() || w > max_angvel).then(|| {
+                let mut why = format!("{} spinning at {w:.0} rad/s", s.name);
+                // What the VH was touching (the usual cause).
+                let n = self.plan.segments.len();
+                for a in n..self.bodies.len() {
+                    for b in 0..n {
+                        if let Some(j) = self.contact_impulse(a, b) {
+                            why += &format!(
+                                "; {} on {} ({j:.2} N s)",
+                                self.bodies[a].name, self.bodies[b].name
+                            );
+                        }
+                    }
+                }
+                why
+            })
         })
     }
 
