@@ -47,6 +47,14 @@ use saccade::{Saccade, SaccadeParams};
 use takagi::{GazeShift, Preset};
 use timing::{Aim, TimingParams};
 
+/// Largest eye velocity the laws may ask for, rad/s (about 1150 deg/s,
+/// above any human eye movement, saccades peak near 700 deg/s). A target
+/// passing over an eye's pole (straight up or down in the head frame, e.g.
+/// a glove above a ducking VH's eyes) swings its yaw through 180 deg within
+/// a few ticks; the pursuit law (M7) then asked for hundreds of rad/s and
+/// the eye was flung (a soak blow-up). Applied to the goal's rate and to
+/// the eyes' velocity references.
+const MAX_TARGET_RATE: f64 = 20.0;
 /// How the VH shifts its gaze to a new target.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 pub enum GazeShiftLaw {
@@ -232,7 +240,9 @@ impl Oculomotor {
             .map(|c| angles_to(felt_inv * c, point).clamp(-range, range));
         let new_target = aim.new_target;
         let target_rate = match self.prev_goal {
-            Some(prev) if !new_target => [(goal[0] - prev[0]) / dt, (goal[1] - prev[1]) / dt],
+            Some(prev) if !new_target => {
+                [0, 1].map(|k| ((goal[k] - prev[k]) / dt).clamp_length_max(MAX_TARGET_RATE))
+            }
             _ => [DVec2::ZERO; 2],
         };
         self.prev_goal = Some(goal);
@@ -357,6 +367,7 @@ impl Oculomotor {
             }
         }
         for (eye, before) in eyes.iter_mut().zip(prev.eyes) {
+            eye.rates = eye.rates.clamp_length_max(MAX_TARGET_RATE);
             eye.accel = (eye.rates - before.rates) / dt;
         }
 

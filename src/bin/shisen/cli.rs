@@ -171,9 +171,10 @@ pub enum Command {
         inputs: Vec<PathBuf>,
     },
     /// Measure the VH against human data: saccade main sequence, reaction
-    /// time, head contribution, pursuit gain, VOR gain, blink rate and
-    /// microsaccades, each from the physics, with its human band and
-    /// source, PASS or FAIL. Exit 1 if any row fails.
+    /// time, head contribution, pursuit gain (speed and frequency), VOR gain
+    /// and latency (head impulse), blink rate at rest and sparring,
+    /// microsaccades and glance duration, each from the physics, with its
+    /// human band and source, PASS or FAIL. Exit 1 if any row fails.
     Fidelity {
         /// Scene whose parameters the VH uses (default: the embedded one).
         #[arg(long)]
