@@ -55,6 +55,13 @@ pub const OPPONENT_MASS: [f32; 3] = [5.0, 1.5, 1.5];
 /// critically damped (k = w^2, c = 2 w). A free glove tracks a 0.2 s
 /// punch closely; a blocked one pushes with at most about k x.
 const DRIVE_STIFFNESS: f32 = 1600.0;
+/// The drive's force is capped at this acceleration of the part's mass,
+/// m/s^2 (40 g; a fast punch's glove peaks near 16 g on a minimum-jerk
+/// path). A scripted path that turns abruptly (a new move while the glove
+/// is moving) differentiates to accelerations of 10^4 m/s^2; uncapped, that
+/// feed-forward flung an opponent glove into the VH's at 40 m/s in one
+/// step (the long soaks' arm blow-ups).
+const DRIVE_MAX_ACCEL: f32 = 400.0;
 const DRIVE_DAMPING: f32 = 80.0;
 
 /// Collision group of the VH (it does not collide with itself).
@@ -411,7 +418,7 @@ impl World {
         let m = rb.mass();
         let (k, c) = (DRIVE_STIFFNESS * m, DRIVE_DAMPING * m);
         let f = m * accel + c * (velocity - rb.linvel()) + k * (position - rb.translation());
-        rb.apply_impulse(f * dt, true);
+        rb.apply_impulse(f.clamp_length_max(m * DRIVE_MAX_ACCEL) * dt, true);
     }
 
     /// Advance the physics by one fixed step.
@@ -619,6 +626,19 @@ impl Scenery for World {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// However abrupt the scripted path, a driven part gains at most
+    /// `DRIVE_MAX_ACCEL dt` of speed in a step.
+    #[test]
+    fn the_drive_force_is_capped() {
+        let mut w = World::new(BodyPlan::default(), 0.001);
+        let g = w.opponent[opp::LEFT_GLOVE];
+        let p = w.rb(g).translation();
+        w.drive(g, p + Vec3::X * 0.05, Vec3::X * 50.0, Vec3::X * 1e5);
+        w.step();
+        let v = w.rb(g).linvel().length();
+        assert!(v > 0.1 && v <= DRIVE_MAX_ACCEL * 0.001 * 1.001, "{v}");
+    }
 
     #[test]
     fn joint_angles_round_trip() {
