@@ -3,6 +3,16 @@
 //! and the neck's range of motion (gaze.md 9, after Takagi & Takeda).
 //! Metres, kilograms, degrees.
 
+/// The arms (the body plan's, shared with the punch planner).
+pub mod arm {
+    /// Upper arm length (shoulder to elbow), m.
+    pub const UPPER: f64 = 0.28;
+    /// Forearm length (elbow to glove centre), m.
+    pub const FOREARM: f64 = 0.30;
+    /// Left shoulder pivot at rest, world m (the right one mirrors x).
+    pub const SHOULDER_L: [f64; 3] = [0.19, 1.45, 0.0];
+}
+
 /// The eyes (gaze.md 2, table 1).
 pub mod eye {
     /// Eyeball radius (22 mm diameter), m.

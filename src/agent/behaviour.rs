@@ -70,6 +70,19 @@ pub struct BehaviourParams {
     pub guard_hold: f64,
     /// Whether the VH attacks at all (scenes that test gaze switch it off).
     pub attacks: bool,
+    /// Farthest the VH steps its torso toward a punch's target, m: a punch
+    /// whose target lies beyond the arm's reach from the shoulder is
+    /// thrown with a lunge of the difference, up to this (boxers step
+    /// into a jab; the stand slides). 0 keeps the torso still (the seed).
+    #[serde(
+        default = "default_max_lunge",
+        deserialize_with = "crate::util::check::non_negative"
+    )]
+    pub max_lunge: f64,
+}
+
+fn default_max_lunge() -> f64 {
+    0.3
 }
 
 impl Default for BehaviourParams {
@@ -88,6 +101,7 @@ impl Default for BehaviourParams {
             guard_reaction: 0.13,
             guard_hold: 0.25,
             attacks: true,
+            max_lunge: default_max_lunge(),
         }
     }
 }
@@ -185,6 +199,9 @@ enum Plan {
 pub struct Behaviour {
     plan: Plan,
     reaches: [Option<Reach>; 2],
+    /// The torso's step into a punch (an offset from rest, out and back
+    /// with the punch).
+    lunge: Option<Reach>,
     /// Guard-stance glove positions (world), left and right.
     stance: [DVec3; 2],
     /// Punches the VH has thrown.
@@ -203,6 +220,7 @@ impl Behaviour {
         Behaviour {
             plan: Plan::Idle,
             reaches: [None, None],
+            lunge: None,
             stance: [DVec3::new(0.11, 1.56, 0.27), DVec3::new(-0.11, 1.56, 0.27)],
             punches_thrown: 0,
         }
@@ -248,7 +266,7 @@ impl Behaviour {
         dt: f64,
         rng: &mut impl Rng,
     ) -> TopDown {
-        for r in &mut self.reaches {
+        for r in self.reaches.iter_mut().chain([&mut self.lunge]) {
             if r.as_ref().is_some_and(|r| r.done(t)) {
                 *r = None;
             }
@@ -338,6 +356,7 @@ impl Behaviour {
                 if !thrown && t >= punch_at {
                     match self.punch_reach(hand, &target, view, t, p) {
                         Some(r) => {
+                            self.lunge = Self::lunge_for(hand, r.to, t, p);
                             self.reaches[hand] = Some(r);
                             self.punches_thrown += 1;
                             self.plan = Plan::Attack {
@@ -410,13 +429,38 @@ impl Behaviour {
             .iter()
             .find(|s| Some(s.body) == target.body)
             .map(|s| s.position)?;
+        let to = base + target.offset;
         Some(Reach {
             from: self.glove(hand, t),
-            to: base + target.offset,
+            to,
             t0: t,
             dur: p.punch_time,
             back: true,
         })
+    }
+
+    /// The lunge a punch at `to` with glove `hand` needs: the part of the
+    /// shoulder-to-target distance beyond the straight arm (less 5 %),
+    /// horizontally toward the target, at most `max_lunge`.
+    fn lunge_for(hand: usize, to: DVec3, t: f64, p: &BehaviourParams) -> Option<Reach> {
+        use crate::anatomy::arm;
+        let [x, y, z] = arm::SHOULDER_L;
+        let shoulder = DVec3::new(if hand == 0 { x } else { -x }, y, z);
+        let reach = 0.95 * (arm::UPPER + arm::FOREARM);
+        let len = ((to - shoulder).length() - reach).clamp(0.0, p.max_lunge);
+        let dir = DVec3::new(to.x - shoulder.x, 0.0, to.z - shoulder.z).normalize_or_zero();
+        (len > 0.0).then(|| Reach {
+            from: DVec3::ZERO,
+            to: dir * len,
+            t0: t,
+            dur: p.punch_time,
+            back: true,
+        })
+    }
+
+    /// Where the torso is stepped to now (offset from its rest position).
+    pub fn torso_offset(&self, t: f64) -> DVec3 {
+        self.lunge.as_ref().map_or(DVec3::ZERO, |r| r.at(t))
     }
 
     /// Desired world positions of the VH's left and right gloves now.

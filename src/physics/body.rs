@@ -169,9 +169,9 @@ pub const NECK_PIVOT: Vec3 = Vec3::new(0.0, 1.52, 0.0);
 /// Eye centres sit this far in front of the neck axis.
 pub const EYE_FORWARD: f32 = 0.072;
 /// Upper arm length (shoulder to elbow), metres.
-pub const UPPER_ARM_LEN: f32 = 0.28;
+pub const UPPER_ARM_LEN: f32 = crate::anatomy::arm::UPPER as f32;
 /// Forearm length (elbow to glove centre), metres.
-pub const FOREARM_LEN: f32 = 0.30;
+pub const FOREARM_LEN: f32 = crate::anatomy::arm::FOREARM as f32;
 
 impl BodyPlan {
     /// Centre of the VH's left (`side = 0`) or right (`side = 1`) eye at rest.
@@ -186,8 +186,8 @@ impl BodyPlan {
 
     /// Shoulder pivot, left (`side = 0`, +X) or right.
     pub fn shoulder(side: usize) -> Vec3 {
-        let x = if side == 0 { 0.19 } else { -0.19 };
-        Vec3::new(x, 1.45, 0.0)
+        let [x, y, z] = crate::anatomy::arm::SHOULDER_L.map(|v| v as f32);
+        Vec3::new(if side == 0 { x } else { -x }, y, z)
     }
 }
 

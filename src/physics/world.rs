@@ -130,8 +130,10 @@ impl World {
         let vh_groups =
             InteractionGroups::new(VH_GROUP, Group32::ALL ^ VH_GROUP, Default::default());
         for (i, s) in plan.segments.iter().enumerate() {
+            // The root stands on a stand that slides (kinematically) when
+            // the VH steps into a punch.
             let rb = if s.parent.is_none() {
-                RigidBodyBuilder::fixed()
+                RigidBodyBuilder::kinematic_position_based()
             } else {
                 RigidBodyBuilder::dynamic()
             }
@@ -419,6 +421,14 @@ impl World {
         let (k, c) = (DRIVE_STIFFNESS * m, DRIVE_DAMPING * m);
         let f = m * accel + c * (velocity - rb.linvel()) + k * (position - rb.translation());
         rb.apply_impulse(f.clamp_length_max(m * DRIVE_MAX_ACCEL) * dt, true);
+    }
+
+    /// Put the VH's root (torso) at `offset` from its rest position by the
+    /// end of the next step (a lunge; the joints carry the rest along).
+    pub fn set_root_offset(&mut self, offset: Vec3) {
+        let rest = self.plan.segments[seg::TORSO].centre;
+        let h = self.bodies[seg::TORSO].handle;
+        self.phys.bodies[h].set_next_kinematic_translation(rest + offset);
     }
 
     /// Advance the physics by one fixed step.

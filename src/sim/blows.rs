@@ -114,10 +114,10 @@ struct Pair {
     by: Fighter,
     kind: BlowKind,
     name: &'static str,
-    /// The part is a glove too: the blow is only this glove's if it was
-    /// the one closing in (the other side's punch blocked by this glove is
-    /// counted from the other pair).
-    glove_on_glove: bool,
+    /// The part guards (a glove or forearm): the contact is this glove's
+    /// blow only if the glove was the one closing in (a punching arm
+    /// running into a glove held still is not that glove's punch).
+    guard_part: bool,
     episode: Option<Episode>,
 }
 
@@ -152,7 +152,7 @@ impl Blows {
                     by: Fighter::Opponent,
                     kind,
                     name,
-                    glove_on_glove: matches!(part, seg::GLOVE_L | seg::GLOVE_R),
+                    guard_part: kind == BlowKind::Block,
                     episode: None,
                 });
             }
@@ -170,7 +170,7 @@ impl Blows {
                     by: Fighter::Vh,
                     kind,
                     name: opp::NAMES[k],
-                    glove_on_glove: k != opp::HEAD,
+                    guard_part: k != opp::HEAD,
                     episode: None,
                 });
             }
@@ -212,7 +212,7 @@ impl Blows {
                 p.episode = None;
             }
             if let Some(j) = world.contact_impulse(p.glove, p.part) {
-                let striker = !p.glove_on_glove || closing(world, p.glove, p.part);
+                let striker = !p.guard_part || closing(world, p.glove, p.part);
                 match self.touching.iter_mut().find(|g| g.0 == p.glove) {
                     // A hit target outranks the guard.
                     Some(g) if p.kind == BlowKind::Hit => g.1 = BlowKind::Hit,
@@ -253,8 +253,8 @@ impl Blows {
     }
 }
 
-/// Whether glove `a` closed in on `b` faster than `b` on `a` (which of two
-/// colliding gloves was punching).
+/// Whether glove `a` closed in on `b` faster than `b` on `a` (which of a
+/// glove and the guard it meets was moving into the other).
 fn closing(world: &World, a: usize, b: usize) -> bool {
     let (ra, rb) = (world.rb(a), world.rb(b));
     let n = (rb.translation() - ra.translation()).normalize_or_zero();

@@ -402,7 +402,12 @@ impl Sim {
     /// velocity reference comes from differencing the IK solution.
     fn plan_arms(&mut self, t: f64) {
         let dt = self.model.dt;
-        for (k, q) in arm_rotations(self.behaviour.glove_targets(t + dt)) {
+        // The torso's lunge moves the shoulders: the arms' inverse
+        // kinematics works from where the torso will be.
+        let lunge = self.behaviour.torso_offset(t + dt);
+        self.world.set_root_offset(lunge.as_vec3());
+        let gloves = self.behaviour.glove_targets(t + dt).map(|g| g - lunge);
+        for (k, q) in arm_rotations(gloves) {
             let prev = self.targets[k].rotation;
             let mut d = q * prev.inverse();
             if d.w < 0.0 {
