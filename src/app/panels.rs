@@ -95,27 +95,22 @@ pub fn hud(ui: &mut egui::Ui, s: &Session, pads: usize, render_ms: f32) {
         ui.separator();
         let tally = s.sim.tally();
         ui.label(big(format!(
-            "hits landed {}  taken {}  blocked {} / {}",
+            "hits landed {}  taken {}  blocked: yours {}, its {}",
             tally.opponent_hits, tally.vh_hits, tally.opponent_blocked, tally.vh_blocked
         )))
         .on_hover_text(
-            "blows (contact impulse over 2 N s): your hits on the VH, its hits on you, \
-             your punches its guard stopped / its punches yours stopped",
+            "blows (contact impulse over 2 N s in 30 ms): your hits on the VH, its hits on \
+             you, your punches its guard stopped, its punches your guard stopped",
         );
         if let Some(lb) = s.last_blow.as_ref().filter(|lb| s.sim.time() - lb.t < 2.0) {
             let b = &lb.blow;
-            let who = match b.by {
-                Fighter::Opponent => "you",
-                Fighter::Vh => "VH",
+            let what = match (b.by, b.kind) {
+                (Fighter::Opponent, BlowKind::Hit) => format!("you hit its {}", b.part),
+                (Fighter::Opponent, BlowKind::Block) => format!("its {} blocked you", b.part),
+                (Fighter::Vh, BlowKind::Hit) => format!("it hit your {}", b.part),
+                (Fighter::Vh, BlowKind::Block) => format!("your {} blocked it", b.part),
             };
-            let what = match b.kind {
-                BlowKind::Hit => "hit",
-                BlowKind::Block => "blocked on",
-            };
-            ui.label(big(format!(
-                "{who}: {what} {} {:.1} N s",
-                b.part, b.impulse
-            )));
+            ui.label(big(format!("{what}, {:.1} N s", b.impulse)));
         }
         ui.separator();
         let mut clock = format!("t = {:.2} s", s.sim.time());
