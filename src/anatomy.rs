@@ -9,8 +9,11 @@ pub mod arm {
     pub const UPPER: f64 = 0.28;
     /// Forearm length (elbow to glove centre), m.
     pub const FOREARM: f64 = 0.30;
-    /// Left shoulder pivot at rest, world m (the right one mirrors x).
-    pub const SHOULDER_L: [f64; 3] = [0.19, 1.45, 0.0];
+    /// Shoulder pivot at rest, world m: left (`side = 0`, +X) or right.
+    pub fn shoulder(side: usize) -> [f64; 3] {
+        let x = if side == 0 { 0.19 } else { -0.19 };
+        [x, 1.45, 0.0]
+    }
 }
 
 /// The eyes (gaze.md 2, table 1).

@@ -429,10 +429,9 @@ impl Behaviour {
             .iter()
             .find(|s| Some(s.body) == target.body)
             .map(|s| s.position)?;
-        let to = base + target.offset;
         Some(Reach {
             from: self.glove(hand, t),
-            to,
+            to: base + target.offset,
             t0: t,
             dur: p.punch_time,
             back: true,
@@ -444,8 +443,7 @@ impl Behaviour {
     /// horizontally toward the target, at most `max_lunge`.
     fn lunge_for(hand: usize, to: DVec3, t: f64, p: &BehaviourParams) -> Option<Reach> {
         use crate::anatomy::arm;
-        let [x, y, z] = arm::SHOULDER_L;
-        let shoulder = DVec3::new(if hand == 0 { x } else { -x }, y, z);
+        let shoulder = DVec3::from_array(arm::shoulder(hand));
         let reach = 0.95 * (arm::UPPER + arm::FOREARM);
         let len = ((to - shoulder).length() - reach).clamp(0.0, p.max_lunge);
         let dir = DVec3::new(to.x - shoulder.x, 0.0, to.z - shoulder.z).normalize_or_zero();

@@ -186,8 +186,7 @@ impl BodyPlan {
 
     /// Shoulder pivot, left (`side = 0`, +X) or right.
     pub fn shoulder(side: usize) -> Vec3 {
-        let [x, y, z] = crate::anatomy::arm::SHOULDER_L.map(|v| v as f32);
-        Vec3::new(if side == 0 { x } else { -x }, y, z)
+        Vec3::from_array(crate::anatomy::arm::shoulder(side).map(|v| v as f32))
     }
 }
 

@@ -81,8 +81,6 @@ pub struct Tally {
     /// The opponent's punches stopped dead on the way out by the VH's guard
     /// (the glove lost over half its speed against a glove or forearm).
     pub opponent_guarded: u32,
-    /// The same for the VH's punches against the opponent's guard.
-    pub vh_guarded: u32,
 }
 
 impl Tally {
@@ -188,14 +186,11 @@ impl Blows {
         &self.touching
     }
 
-    /// A punch by `by` was stopped on the way out (see
-    /// `Timeline::recoil`), by the guard or by the target itself.
-    pub fn punch_stopped(&mut self, by: Fighter, on: BlowKind) {
+    /// An opponent's punch was stopped on the way out (see
+    /// `Timeline::recoil`) while touching `on`: the guard, or the target.
+    pub fn opponent_punch_stopped(&mut self, on: BlowKind) {
         if on == BlowKind::Block {
-            match by {
-                Fighter::Opponent => self.tally.opponent_guarded += 1,
-                Fighter::Vh => self.tally.vh_guarded += 1,
-            }
+            self.tally.opponent_guarded += 1;
         }
     }
 

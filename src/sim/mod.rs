@@ -456,7 +456,7 @@ impl Sim {
             let rb = self.world.rb(g);
             let (at, v) = (rb.translation().as_dvec3(), rb.linvel().as_dvec3());
             if self.timeline.recoil(g, t, at, v, self.model.dt) {
-                self.blows.punch_stopped(blows::Fighter::Opponent, on);
+                self.blows.opponent_punch_stopped(on);
             }
         }
         self.fixated = (sample.los_error[0].max(sample.los_error[1]) < EYES_ON_TARGET)

@@ -419,7 +419,7 @@ impl Timeline {
                     let through = through.unwrap_or(FOLLOW_THROUGH);
                     let glove_r = world.plan.glove_radius as f64;
                     // Aimed through the target (follow-through):
-                    // the path ends FOLLOW_THROUGH behind the point where the
+                    // the path ends `through` behind the point where the
                     // glove's surface meets the target's, so the glove
                     // arrives at speed and the physics stops it.
                     let (aim, radius) = match target {

@@ -97,14 +97,39 @@ fn hold_head(until: f64) -> Event {
     )
 }
 
-/// Left-eye yaw velocity, deg/s, per sample (central difference).
-fn eye_velocity(s: &[Sample]) -> Vec<f64> {
+/// The rate of an angle (rad) per sample, deg/s (central difference).
+fn rate(s: &[Sample], angle: impl Fn(&Sample) -> f64) -> Vec<f64> {
     (0..s.len())
         .map(|i| {
             let (a, b) = (i.saturating_sub(1), (i + 1).min(s.len() - 1));
-            (s[b].eye_actual[0].x - s[a].eye_actual[0].x).to_degrees() / (s[b].t - s[a].t)
+            (angle(&s[b]) - angle(&s[a])).to_degrees() / (s[b].t - s[a].t)
         })
         .collect()
+}
+
+/// Fixate a point 3 m straight ahead, eyes only, from 0 to `until`.
+fn fixate_far(until: f64) -> Event {
+    at(
+        0.0,
+        Action::LookAt {
+            point: point(0.0, 3.0),
+            until,
+            amount: Some(0.0),
+            style: None,
+        },
+    )
+}
+
+/// Left-eye yaw velocity, deg/s, per sample.
+fn eye_velocity(s: &[Sample]) -> Vec<f64> {
+    rate(s, |x| x.eye_actual[0].x)
+}
+
+/// Whether sample `i` lies within 15 ticks of a flagged one (a saccade).
+fn near(flags: &[bool], i: usize) -> bool {
+    flags[i.saturating_sub(15)..(i + 15).min(flags.len())]
+        .iter()
+        .any(|&b| b)
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -321,13 +346,7 @@ fn pursuit(model: &Model, rows: &mut Vec<Row>, curves: &mut Curves) {
         let (from, to) = (start + 0.3, start + sweep - 0.05);
         let saccadic: Vec<bool> = v.iter().map(|x| (x - rate).abs() > 20.0 + rate).collect();
         let smooth: Vec<f64> = (0..s.len())
-            .filter(|&i| {
-                s[i].t > from
-                    && s[i].t < to
-                    && !saccadic[i.saturating_sub(15)..(i + 15).min(s.len())]
-                        .iter()
-                        .any(|&b| b)
-            })
+            .filter(|&i| s[i].t > from && s[i].t < to && !near(&saccadic, i))
             .map(|i| v[i])
             .collect();
         let gain = smooth.iter().sum::<f64>() / smooth.len().max(1) as f64 / rate;
@@ -380,11 +399,7 @@ fn sinusoidal_pursuit(model: &Model, rows: &mut Vec<Row>) {
         let (mut ss, mut sc, mut cc, mut vs, mut vc) = (0.0, 0.0, 0.0, 0.0, 0.0);
         for i in 0..s.len() {
             let t = s[i].t - start;
-            if t < 1.0 / f
-                || saccadic[i.saturating_sub(15)..(i + 15).min(s.len())]
-                    .iter()
-                    .any(|&b| b)
-            {
+            if t < 1.0 / f || near(&saccadic, i) {
                 continue;
             }
             let (sn, cs) = (w * t).sin_cos();
@@ -409,15 +424,7 @@ fn sinusoidal_pursuit(model: &Model, rows: &mut Vec<Row>) {
 fn vor(model: &Model, rows: &mut Vec<Row>) {
     // Fixating a far point while the head is turned 10 deg at 1 Hz.
     let tl = [
-        at(
-            0.0,
-            Action::LookAt {
-                point: point(0.0, 3.0),
-                until: 4.0,
-                amount: Some(0.0),
-                style: None,
-            },
-        ),
+        fixate_far(4.0),
         at(
             1.0,
             Action::ShakeHead {
@@ -430,12 +437,7 @@ fn vor(model: &Model, rows: &mut Vec<Row>) {
     ];
     let s = run(model, point(0.0, 30.0), &tl, 4.0);
     let v = eye_velocity(&s);
-    let head: Vec<f64> = (0..s.len())
-        .map(|i| {
-            let (a, b) = (i.saturating_sub(1), (i + 1).min(s.len() - 1));
-            (s[b].neck_actual.yaw - s[a].neck_actual.yaw).to_degrees() / (s[b].t - s[a].t)
-        })
-        .collect();
+    let head = rate(&s, |x| x.neck_actual.yaw);
     let (mut eh, mut hh) = (0.0, 0.0);
     for i in 0..s.len() {
         if s[i].t > 1.5 && v[i].abs() < 100.0 {
@@ -460,15 +462,7 @@ fn head_impulse(model: &Model, rows: &mut Vec<Row>) {
     // to head velocity areas over the first 80 ms.
     let t0 = 1.0;
     let tl = [
-        at(
-            0.0,
-            Action::LookAt {
-                point: point(0.0, 3.0),
-                until: 2.0,
-                amount: Some(0.0),
-                style: None,
-            },
-        ),
+        fixate_far(2.0),
         at(
             t0,
             Action::TurnHead {
@@ -481,12 +475,7 @@ fn head_impulse(model: &Model, rows: &mut Vec<Row>) {
     ];
     let s = run(model, point(0.0, 30.0), &tl, 1.5);
     let v = eye_velocity(&s);
-    let head: Vec<f64> = (0..s.len())
-        .map(|i| {
-            let (a, b) = (i.saturating_sub(1), (i + 1).min(s.len() - 1));
-            (s[b].neck_actual.yaw - s[a].neck_actual.yaw).to_degrees() / (s[b].t - s[a].t)
-        })
-        .collect();
+    let head = rate(&s, |x| x.neck_actual.yaw);
     let onset = |x: &[f64], sign: f64| (0..s.len()).find(|&i| s[i].t > t0 && sign * x[i] > 20.0);
     let (latency, gain) = match (onset(&head, 1.0), onset(&v, -1.0)) {
         (Some(h), Some(e)) => {
@@ -609,12 +598,7 @@ fn microsaccades(model: &Model, rows: &mut Vec<Row>) {
     let secs = 30.0;
     let s = run(model, point(0.0, 30.0), &[], secs + 1.0);
     let v = eye_velocity(&s);
-    let pitch_v: Vec<f64> = (0..s.len())
-        .map(|i| {
-            let (a, b) = (i.saturating_sub(1), (i + 1).min(s.len() - 1));
-            (s[b].eye_actual[0].y - s[a].eye_actual[0].y).to_degrees() / (s[b].t - s[a].t)
-        })
-        .collect();
+    let pitch_v = rate(&s, |x| x.eye_actual[0].y);
     let speed: Vec<f64> = (0..s.len()).map(|i| v[i].hypot(pitch_v[i])).collect();
     let mut amps = Vec::new();
     let mut i = 0;

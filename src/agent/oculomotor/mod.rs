@@ -52,9 +52,10 @@ use timing::{Aim, TimingParams};
 /// passing over an eye's pole (straight up or down in the head frame, e.g.
 /// a glove above a ducking VH's eyes) swings its yaw through 180 deg within
 /// a few ticks; the pursuit law (M7) then asked for hundreds of rad/s and
-/// the eye was flung (a soak blow-up). Applied to the goal's rate and to
-/// the eyes' velocity references.
-const MAX_TARGET_RATE: f64 = 20.0;
+/// the eye was flung (a soak blow-up). Applied to the eyes' velocity
+/// references, the command the joints receive.
+const MAX_EYE_RATE: f64 = 20.0;
+
 /// How the VH shifts its gaze to a new target.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 pub enum GazeShiftLaw {
@@ -240,9 +241,7 @@ impl Oculomotor {
             .map(|c| angles_to(felt_inv * c, point).clamp(-range, range));
         let new_target = aim.new_target;
         let target_rate = match self.prev_goal {
-            Some(prev) if !new_target => {
-                [0, 1].map(|k| ((goal[k] - prev[k]) / dt).clamp_length_max(MAX_TARGET_RATE))
-            }
+            Some(prev) if !new_target => [(goal[0] - prev[0]) / dt, (goal[1] - prev[1]) / dt],
             _ => [DVec2::ZERO; 2],
         };
         self.prev_goal = Some(goal);
@@ -367,7 +366,7 @@ impl Oculomotor {
             }
         }
         for (eye, before) in eyes.iter_mut().zip(prev.eyes) {
-            eye.rates = eye.rates.clamp_length_max(MAX_TARGET_RATE);
+            eye.rates = eye.rates.clamp_length_max(MAX_EYE_RATE);
             eye.accel = (eye.rates - before.rates) / dt;
         }
 
