@@ -83,6 +83,18 @@ fn broken_scenes_name_file_line_and_field() {
             ":4:",
             "at_least",
         ),
+        (
+            "vacuous.ron",
+            "Scene(\n  duration: 1.0,\n  expect: [\n    Finite,\n    Blows(kind: Hit, by: Vh, from: 0.0, to: 1.0),\n  ],\n)",
+            ":5:",
+            "expect[1].at_least",
+        ),
+        (
+            "inverted.ron",
+            "Scene(\n  duration: 1.0,\n  expect: [\n    Blows(kind: Block, by: Opponent, from: 0.0, to: 1.0,\n      at_least: 2, at_most: 1),\n  ],\n)",
+            ":5:",
+            "expect[0].at_most",
+        ),
     ];
     for (name, text, line, field) in cases {
         let p = write_scene(name, text);

@@ -137,6 +137,38 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
             ));
         }
     }
+    // Counts that bound nothing could never fail.
+    for (i, x) in scene.expect.iter().enumerate() {
+        let vacuous = match x {
+            Expect::Blows {
+                at_least, at_most, ..
+            } => {
+                if at_most.is_some_and(|m| m < *at_least) {
+                    return Err(err(
+                        "at_most",
+                        format!("expect[{i}].at_most"),
+                        format!("must be at least at_least ({at_least})"),
+                    ));
+                }
+                *at_least == 0 && at_most.is_none()
+            }
+            Expect::Blinks { at_least, .. } => *at_least == 0,
+            _ => false,
+        };
+        if vacuous {
+            let needle = if matches!(x, Expect::Blows { .. }) {
+                "Blows("
+            } else {
+                "Blinks("
+            };
+            return Err(err(
+                needle,
+                format!("expect[{i}].at_least"),
+                "must be at least 1 (or, for Blows, give at_most): as written it cannot fail"
+                    .into(),
+            ));
+        }
+    }
     Ok(())
 }
 

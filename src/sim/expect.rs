@@ -189,8 +189,8 @@ pub enum Expect {
     /// away from where it pointed at the start of [from, to] (a hit rocks
     /// the head).
     HeadRotation {
-        /// Least peak rotation, deg.
-        #[serde(deserialize_with = "crate::util::check::non_negative")]
+        /// Least peak rotation, deg (positive).
+        #[serde(deserialize_with = "crate::util::check::positive")]
         at_least_deg: f64,
         /// Window start, s.
         #[serde(deserialize_with = "crate::util::check::non_negative")]
