@@ -73,7 +73,9 @@ pub struct BehaviourParams {
     /// Farthest the VH steps its torso toward a punch's target, m: a punch
     /// whose target lies beyond the arm's reach from the shoulder is
     /// thrown with a lunge of the difference, up to this (boxers step
-    /// into a jab; the stand slides). 0 keeps the torso still (the seed).
+    /// into a jab; the stand slides). Not a human figure: the 0.24 m the
+    /// VH's arm falls short of the avatar's head at the default distance,
+    /// with room to spare. 0 keeps the torso still (the seed).
     #[serde(
         default = "default_max_lunge",
         deserialize_with = "crate::util::check::non_negative"

@@ -48,7 +48,8 @@ use takagi::{GazeShift, Preset};
 use timing::{Aim, TimingParams};
 
 /// Largest eye velocity the laws may ask for, rad/s (about 1150 deg/s,
-/// above any human eye movement, saccades peak near 700 deg/s). A target
+/// above any human eye movement: the largest saccades peak near 700 deg/s,
+/// Bahill, Clark & Stark 1975, Math. Biosci. 24:191). A target
 /// passing over an eye's pole (straight up or down in the head frame, e.g.
 /// a glove above a ducking VH's eyes) swings its yaw through 180 deg within
 /// a few ticks; the pursuit law (M7) then asked for hundreds of rad/s and
