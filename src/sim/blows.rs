@@ -251,7 +251,6 @@ impl Blows {
 /// Whether glove `a` closed in on `b` faster than `b` on `a` (which of a
 /// glove and the guard it meets was moving into the other).
 fn closing(world: &World, a: usize, b: usize) -> bool {
-    let (ra, rb) = (world.rb(a), world.rb(b));
-    let n = (rb.translation() - ra.translation()).normalize_or_zero();
-    ra.linvel().dot(n) >= -rb.linvel().dot(n)
+    let n = (world.position(b) - world.position(a)).normalize_or_zero();
+    world.velocity(a).dot(n) >= -world.velocity(b).dot(n)
 }

@@ -118,7 +118,7 @@ impl Sim {
         let mut scripted = Vec::new();
         for k in 0..3 {
             let b = world.opponent[k];
-            scripted.push((b, world.rb(b).translation().as_dvec3()));
+            scripted.push((b, world.position(b).as_dvec3()));
         }
         for b in &model.props {
             let shape = match b.shape {
@@ -300,7 +300,7 @@ impl Sim {
     /// Attention always runs (its scores and habituation stay live).
     fn attend(&mut self, top_down: &TopDown, t: f64) -> GazeChoice {
         let world = &self.world;
-        let body_pos = |b: usize| world.rb(b).translation().as_dvec3();
+        let body_pos = |b: usize| world.position(b).as_dvec3();
         let p = &self.model.params;
         let chosen = self.attention.step(
             &p.attention,
@@ -453,8 +453,10 @@ impl Sim {
         let t = self.time();
         sample.blows = self.blows.step(&self.world, t);
         for (g, on) in self.blows.touching().to_vec() {
-            let rb = self.world.rb(g);
-            let (at, v) = (rb.translation().as_dvec3(), rb.linvel().as_dvec3());
+            let (at, v) = (
+                self.world.position(g).as_dvec3(),
+                self.world.velocity(g).as_dvec3(),
+            );
             if self.timeline.recoil(g, t, at, v, self.model.dt) {
                 self.blows.opponent_punch_stopped(on);
             }

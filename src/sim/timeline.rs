@@ -439,7 +439,7 @@ impl Timeline {
                         Hand::Right => Part::RightGlove,
                     };
                     let b = part_body(world, &part);
-                    let from = world.rb(b).translation().as_dvec3();
+                    let from = world.position(b).as_dvec3();
                     let dir = (aim - from).normalize_or(DVec3::NEG_Z);
                     let to = aim - dir * radius;
                     if let Some(tr) = self.track_mut(b) {

@@ -267,8 +267,8 @@ pub fn soak_cmd(minutes: f64, seed: u64, force: bool) -> Result<bool> {
         t.opponent_hits, t.opponent_blocked, t.opponent_guarded, t.vh_hits, t.vh_blocked
     );
     println!(
-        "  worst eye/neck excursion past its range {:.2} deg; resident memory {} -> {} KiB",
-        r.worst_limit_excess_deg, r.rss_kib.0, r.rss_kib.1
+        "  worst eye/neck excursion past its range {:.2} deg; widest joint gap {:.2} mm; resident memory {} -> {} KiB",
+        r.worst_limit_excess_deg, r.worst_joint_gap_mm, r.rss_kib.0, r.rss_kib.1
     );
     for f in &r.failures {
         println!("  FAIL {f}");
