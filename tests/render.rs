@@ -55,10 +55,10 @@ struct Look {
 
 fn look(gpu: &mut Headless, sim: &Sim) -> Look {
     let img = gpu
-        .snapshot(sim, View::First, Overlays::default(), SIZE)
+        .snapshot(sim, View::FACE, Overlays::default(), SIZE)
         .expect("render");
     let size = Vec2::new(SIZE.0 as f32, SIZE.1 as f32);
-    let cam = Camera::of(View::First, sim, 1.0);
+    let cam = Camera::of(View::FACE, sim, 1.0);
     let eyes = [seg::EYE_L, seg::EYE_R].map(|e| {
         cam.project(sim.world.pose(e).0, size)
             .expect("eye in front of the camera")

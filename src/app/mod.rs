@@ -54,6 +54,54 @@ pub struct AppOptions {
 /// What the screenshot came to (shared with egui's callback).
 type Shot = Arc<Mutex<Option<Arc<egui::ColorImage>>>>;
 
+/// Where a frame's time goes, smoothed over about a second, and logged
+/// every few seconds: the whole frame (wall time between frames), and the
+/// CPU parts the app controls (stepping the simulation, describing the
+/// scene, recording the render). The rest is egui and the driver
+/// (rasterising, on a software Vulkan; presenting).
+#[derive(Clone, Debug, Default)]
+pub struct FrameClock {
+    /// Frame interval, ms (exponential average).
+    pub frame_ms: f32,
+    /// Simulation, scene build and render recording, ms (averages).
+    pub parts_ms: [f32; 3],
+    frames: u32,
+    since_log_ms: f32,
+}
+
+impl FrameClock {
+    const SMOOTHING: f32 = 0.05;
+    const LOG_EVERY_MS: f32 = 5000.0;
+
+    fn add(&mut self, frame_ms: f32, parts_ms: [f32; 3]) {
+        let a = if self.frames == 0 {
+            1.0
+        } else {
+            Self::SMOOTHING
+        };
+        self.frame_ms += a * (frame_ms - self.frame_ms);
+        for (avg, p) in self.parts_ms.iter_mut().zip(parts_ms) {
+            *avg += a * (p - *avg);
+        }
+        self.frames += 1;
+        self.since_log_ms += frame_ms;
+        if self.since_log_ms >= Self::LOG_EVERY_MS {
+            self.since_log_ms = 0.0;
+            tracing::info!("{}", self.summary());
+        }
+    }
+
+    /// "frame 33.0 ms (30.3 fps): sim 1.1, scene 2.0, render 0.4 ms".
+    pub fn summary(&self) -> String {
+        let [sim, build, render] = self.parts_ms;
+        format!(
+            "frame {:.1} ms ({:.1} fps): sim {sim:.1}, scene {build:.1}, render {render:.1} ms",
+            self.frame_ms,
+            1000.0 / self.frame_ms.max(1e-3)
+        )
+    }
+}
+
 struct ShisenApp {
     session: Session,
     collector: Collector,
@@ -64,6 +112,7 @@ struct ShisenApp {
     opts: AppOptions,
     started: Instant,
     last: Instant,
+    frames: FrameClock,
     shot: Option<Shot>,
     /// Set when the run must end with an error (blank screenshot).
     failure: Arc<Mutex<Option<String>>>,
@@ -108,6 +157,7 @@ pub fn run(opts: AppOptions) -> anyhow::Result<()> {
                 opts,
                 started: Instant::now(),
                 last: Instant::now(),
+                frames: FrameClock::default(),
                 shot: None,
                 failure: fail,
             }))
@@ -261,14 +311,20 @@ impl eframe::App for ShisenApp {
         self.session.apply(&intent);
         let wall = now.duration_since(self.last).as_secs_f64();
         self.last = now;
+        let sim_started = Instant::now();
         self.session.advance(wall);
+        let sim_ms = sim_started.elapsed().as_secs_f32() * 1e3;
 
         let Some(viewport) = self.viewport.as_mut() else {
             return;
         };
-        let render_ms = viewport.render_ms;
+        self.frames.add(
+            wall as f32 * 1e3,
+            [sim_ms, viewport.build_ms, viewport.render_ms],
+        );
+        let frames = self.frames.clone();
         egui::Panel::top("hud").show(ui, |ui| {
-            panels::hud(ui, &self.session, self.pads.names().len(), render_ms);
+            panels::hud(ui, &self.session, self.pads.names().len(), &frames);
         });
         if self.show_panels {
             egui::Panel::right("tuning")
@@ -281,7 +337,7 @@ impl eframe::App for ShisenApp {
         }
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
-            .show(ui, |ui| viewport.draw(ui, rs, &self.session));
+            .show(ui, |ui| viewport.draw(ui, &self.session));
         self.ci_exit(&ctx);
         ctx.request_repaint();
     }

@@ -75,7 +75,7 @@ impl PanelState {
 }
 
 /// The always-visible line: action, gaze, hits, clock.
-pub fn hud(ui: &mut egui::Ui, s: &Session, pads: usize, render_ms: f32) {
+pub fn hud(ui: &mut egui::Ui, s: &Session, pads: usize, frames: &super::FrameClock) {
     ui.horizontal_wrapped(|ui| {
         let big = |t: String| RichText::new(t).size(16.0).strong();
         match s.sim.last() {
@@ -124,10 +124,13 @@ pub fn hud(ui: &mut egui::Ui, s: &Session, pads: usize, render_ms: f32) {
             ui.label(RichText::new(format!("REC {} events", r.len())).color(egui::Color32::RED));
         }
         ui.separator();
-        ui.label(format!(
-            "reach {:.2} m  pads {pads}  render {render_ms:.1} ms",
-            s.control.reach
-        ));
+        ui.label(format!("reach {:.2} m  pads {pads}", s.control.reach));
+        ui.separator();
+        ui.label(frames.summary()).on_hover_text(
+            "wall time between frames, and the app's own CPU time in it: stepping the \
+             simulation, describing the scene, recording the render (the rest is egui \
+             and the driver)",
+        );
     });
 }
 

@@ -1,25 +1,28 @@
 //! The 3D viewport: turns the pointer into a glove position (first person)
 //! or an orbit (orbit view), renders the session with the shared wgpu
-//! device into the renderer's texture, shows it as an egui image, and
-//! paints the saliency labels.
+//! device into the renderer's texture, copies that into egui's pass (a
+//! paint callback) and paints the saliency labels.
 
 use eframe::egui;
 use eframe::egui_wgpu;
 use glam::{Vec2, Vec3};
 
 use crate::input::Pointer;
-use crate::render::{Camera, Frame, Overlays, Renderer, View};
+use crate::render::{Blit, BlitBind, Camera, Frame, Overlays, Renderer, View};
 
 use super::session::Session;
 
 /// The viewport's GPU side.
 pub struct Viewport {
     renderer: Renderer,
-    texture: Option<(egui::TextureId, (u32, u32))>,
+    blit: Blit,
     /// Camera.
     pub view: View,
     /// Overlay toggles.
     pub overlays: Overlays,
+    /// CPU time of the last frame's scene description (pose, skin, face
+    /// deformation), ms.
+    pub build_ms: f32,
     /// CPU time of the last render call (recording and submitting), ms.
     pub render_ms: f32,
     /// Where the view was drawn last frame, and its camera.
@@ -30,10 +33,11 @@ impl Viewport {
     /// A viewport on eframe's device.
     pub fn new(rs: &egui_wgpu::RenderState, view: View) -> Self {
         Viewport {
-            renderer: Renderer::new(&rs.adapter, &rs.device, &rs.queue),
-            texture: None,
+            renderer: Renderer::for_window(&rs.adapter, &rs.device, &rs.queue),
+            blit: Blit::new(&rs.device, rs.target_format),
             view,
             overlays: Overlays::default(),
+            build_ms: 0.0,
             render_ms: 0.0,
             last: None,
         }
@@ -118,7 +122,7 @@ impl Viewport {
     }
 
     /// Draw the session into `ui`'s remaining space.
-    pub fn draw(&mut self, ui: &mut egui::Ui, rs: &egui_wgpu::RenderState, session: &Session) {
+    pub fn draw(&mut self, ui: &mut egui::Ui, session: &Session) {
         let rect = ui.available_rect_before_wrap();
         let ppp = ui.ctx().pixels_per_point();
         let px = (
@@ -126,34 +130,20 @@ impl Viewport {
             ((rect.height() * ppp).round() as u32).max(16),
         );
         let aspect = px.0 as f32 / px.1 as f32;
+        let started = std::time::Instant::now();
         let frame = Frame::build(&session.sim, self.view, self.overlays, aspect);
+        self.build_ms = started.elapsed().as_secs_f32() * 1e3;
         let started = std::time::Instant::now();
         self.renderer
             .render(&frame, &session.sim.model().face.mesh.triangles, px);
         self.render_ms = started.elapsed().as_secs_f32() * 1e3;
-        let view = self.renderer.color_view_unorm().expect("rendered");
-        let id = {
-            let mut egui_r = rs.renderer.write();
-            match self.texture {
-                Some((id, size)) if size == px => id,
-                Some((id, _)) => {
-                    egui_r.update_egui_texture_from_wgpu_texture(
-                        &rs.device,
-                        &view,
-                        wgpu::FilterMode::Linear,
-                        id,
-                    );
-                    id
-                }
-                None => egui_r.register_native_texture(&rs.device, &view, wgpu::FilterMode::Linear),
-            }
-        };
-        self.texture = Some((id, px));
-        ui.put(
-            rect,
-            egui::Image::new(egui::load::SizedTexture::new(id, rect.size()))
-                .sense(egui::Sense::click_and_drag()),
-        );
+        if let Some(bind) = self.blit.bind(&self.renderer) {
+            ui.painter().add(egui_wgpu::Callback::new_paint_callback(
+                rect,
+                BlitPaint(bind),
+            ));
+        }
+        ui.allocate_rect(rect, egui::Sense::click_and_drag());
         self.last = Some((rect, frame.camera));
         let size = Vec2::new(rect.width(), rect.height());
         let painter = ui.painter_at(rect);
@@ -168,5 +158,20 @@ impl Viewport {
                 );
             }
         }
+    }
+}
+
+/// egui's paint callback that copies the rendered picture into the
+/// window's pass ([`Blit`]).
+struct BlitPaint(BlitBind);
+
+impl egui_wgpu::CallbackTrait for BlitPaint {
+    fn paint(
+        &self,
+        _info: egui::PaintCallbackInfo,
+        pass: &mut wgpu::RenderPass<'static>,
+        _resources: &egui_wgpu::CallbackResources,
+    ) {
+        self.0.draw(pass);
     }
 }

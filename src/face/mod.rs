@@ -6,6 +6,7 @@
 //! contractions, transition timing, blink process, eye pitch) lives in
 //! [`FaceState`], as MuJoCo separates model and data.
 
+pub mod appearance;
 pub mod blink;
 pub mod calibrate;
 pub mod emotion;

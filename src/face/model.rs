@@ -19,6 +19,9 @@ pub struct Face {
     pub params: FaceParams,
     /// Muscles and precomputed fields.
     pub rig: Rig,
+    /// Each rest vertex's colour (hair, brows, lips, lash line, skin),
+    /// linear RGBA ([`super::appearance::paint`]).
+    pub colours: Vec<[f32; 4]>,
 }
 
 impl Face {
@@ -31,7 +34,13 @@ impl Face {
     /// Build the rig on a given mesh (generated or imported, see `exchange.rs`).
     pub fn from_mesh(mesh: HeadMesh, params: FaceParams) -> Face {
         let rig = Rig::build(&mesh, &params);
-        Face { mesh, params, rig }
+        let colours = super::appearance::paint(&mesh, &super::appearance::FaceStyle::default());
+        Face {
+            mesh,
+            params,
+            rig,
+            colours,
+        }
     }
 }
 

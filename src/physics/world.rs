@@ -160,7 +160,10 @@ impl World {
                 _ => None,
             };
             if let Some(p) = welded {
-                let (h, offset) = (handles[p], bodies[p].offset + s.centre - plan.segments[p].centre);
+                let (h, offset) = (
+                    handles[p],
+                    bodies[p].offset + s.centre - plan.segments[p].centre,
+                );
                 let cb = collider_for(s.shape, s.axis_to, offset)
                     .mass(s.mass)
                     .collision_groups(vh_groups)
@@ -370,7 +373,10 @@ impl World {
     /// World pose of a body: (translation, rotation).
     pub fn pose(&self, body: usize) -> (Vec3, Quat) {
         let rb = self.rb(body);
-        (rb.position().transform_point(self.bodies[body].offset), *rb.rotation())
+        (
+            rb.position().transform_point(self.bodies[body].offset),
+            *rb.rotation(),
+        )
     }
 
     /// World position of a body.

@@ -39,13 +39,34 @@ impl View {
         distance: 2.2,
     };
 
-    /// Parse `first`, `orbit` or `face`.
+    /// Parse `first`, `orbit`, `face` or `orbit:YAW,PITCH,DISTANCE`
+    /// (radians, radians, metres; finite, distance 0.2-10 m).
     pub fn parse(s: &str) -> Option<View> {
         match s {
             "first" => Some(View::First),
             "orbit" => Some(View::ORBIT),
             "face" => Some(View::FACE),
-            _ => None,
+            _ => {
+                let v: Vec<f32> = s
+                    .strip_prefix("orbit:")?
+                    .split(',')
+                    .map(|x| x.trim().parse().ok())
+                    .collect::<Option<_>>()?;
+                match v[..] {
+                    [yaw, pitch, distance]
+                        if yaw.is_finite()
+                            && pitch.is_finite()
+                            && (0.2..=10.0).contains(&distance) =>
+                    {
+                        Some(View::Orbit {
+                            yaw,
+                            pitch,
+                            distance,
+                        })
+                    }
+                    _ => None,
+                }
+            }
         }
     }
 }
@@ -63,9 +84,11 @@ pub struct Camera {
     pub aspect: f32,
 }
 
-/// Vertical field of view of the first-person camera: about what a face at
-/// 0.9 m fills for a person focused on it (the head and the gloves in frame).
-const FIRST_FOV_DEG: f32 = 40.0;
+/// Vertical field of view of the first-person camera (about 90 deg
+/// across at 16:9, a desktop first-person view): the VH's head and arms,
+/// and your own gloves in guard (some 27 deg below your line of sight)
+/// whole in the lower corners, as you would see them.
+const FIRST_FOV_DEG: f32 = 58.0;
 /// Orbit camera field of view.
 const ORBIT_FOV_DEG: f32 = 45.0;
 

@@ -11,6 +11,7 @@ use crate::physics::world::{Owner, opp};
 use crate::sim::Sim;
 use crate::util::math::{dir_from_yaw_pitch, yaw_pitch_of};
 
+use super::body::{BodyMesh, BodyStyle, Pose, avatar_pose, vh_pose};
 use super::camera::{Camera, View};
 use super::geometry::Vertex;
 
@@ -32,6 +33,11 @@ pub enum MeshKey {
     },
     /// The deformed face ([`Frame::face`]).
     Face,
+    /// The VH's skinned body ([`Frame::body`]).
+    Body,
+    /// Your skinned body ([`Frame::avatar`]; only its arms in the
+    /// first-person view).
+    Avatar,
 }
 
 /// How a surface is shaded.
@@ -43,6 +49,8 @@ pub enum Material {
     Eye = 1,
     /// Checkered floor.
     Floor = 2,
+    /// Skin: wrapped, reddened diffuse and a weak sheen.
+    Skin = 3,
 }
 
 /// One mesh instance.
@@ -99,17 +107,120 @@ pub struct Frame {
     pub draws: Vec<Draw>,
     /// Deformed face vertices in the face frame (drawn with [`MeshKey::Face`]).
     pub face: Vec<Vertex>,
+    /// The VH's posed body, world frame ([`MeshKey::Body`], indexed by
+    /// [`Looks::indices`]).
+    pub body: Vec<Vertex>,
+    /// Your posed body, world frame ([`MeshKey::Avatar`], indexed by
+    /// [`Frame::avatar_indices`]).
+    pub avatar: Vec<Vertex>,
+    /// Which of your body's triangles to draw: all of it, or the arms
+    /// alone from your own eyes.
+    pub avatar_indices: AvatarPart,
+    /// The body plan the bodies were posed on ([`Looks::of`] gives their
+    /// triangles).
+    pub plan: BodyPlan,
     /// Overlay lines (pairs of vertices).
     pub lines: Vec<LineVertex>,
     /// Overlay labels.
     pub labels: Vec<Label>,
 }
 
-const SKIN: [f32; 4] = [0.78, 0.52, 0.40, 1.0];
+/// Which part of your body is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AvatarPart {
+    /// The whole body (orbit views).
+    Whole,
+    /// Forearms and gloves (first person).
+    Arms,
+}
+
+/// The bodies' skinned meshes, built once from the body plan (a pure
+/// function of it): the VH's and yours, which differ in colour.
+pub struct Looks {
+    /// The VH's body.
+    pub vh: BodyMesh,
+    /// Your body.
+    pub you: BodyMesh,
+}
+
+impl Looks {
+    /// The meshes for `plan`: built on first use for the standard plan and
+    /// kept; any other plan builds its own (a few milliseconds).
+    pub fn of(plan: &BodyPlan) -> std::borrow::Cow<'static, Looks> {
+        static STANDARD: std::sync::OnceLock<Looks> = std::sync::OnceLock::new();
+        if *plan == BodyPlan::default() {
+            std::borrow::Cow::Borrowed(STANDARD.get_or_init(|| Looks::build(plan)))
+        } else {
+            std::borrow::Cow::Owned(Looks::build(plan))
+        }
+    }
+
+    fn build(plan: &BodyPlan) -> Looks {
+        let vh = BodyStyle {
+            skin: SKIN,
+            shirt: SHIRT,
+            glove: VH_GLOVE,
+            cuff: CUFF,
+        };
+        let you = BodyStyle {
+            skin: SKIN,
+            shirt: YOUR_SHIRT,
+            glove: YOUR_GLOVE,
+            cuff: CUFF,
+        };
+        Looks {
+            vh: BodyMesh::new(plan, &vh),
+            you: BodyMesh::new(plan, &you),
+        }
+    }
+
+    /// Triangles of a body mesh key.
+    pub fn indices(&self, key: MeshKey, part: AvatarPart) -> &[u32] {
+        match (key, part) {
+            (MeshKey::Avatar, AvatarPart::Arms) => self.you.arm_indices(),
+            (MeshKey::Avatar, AvatarPart::Whole) => &self.you.indices,
+            _ => &self.vh.indices,
+        }
+    }
+}
+
+impl Clone for Looks {
+    fn clone(&self) -> Self {
+        Looks {
+            vh: self.vh.clone(),
+            you: self.you.clone(),
+        }
+    }
+}
+
+fn posed(mesh: &BodyMesh, pose: &Pose) -> Vec<Vertex> {
+    let mut out = Vec::new();
+    mesh.skin(pose, &mut out);
+    out.into_iter()
+        .map(|v| Vertex {
+            pos: v.pos,
+            normal: v.normal,
+            color: v.color,
+        })
+        .collect()
+}
+
+const SKIN: [f32; 4] = {
+    let s = crate::face::appearance::FaceStyle::DEFAULT.skin;
+    [s[0], s[1], s[2], 1.0]
+};
+/// Inside of the mouth, and teeth.
+const MOUTH: [f32; 4] = [0.05, 0.012, 0.012, 1.0];
+const TEETH: [f32; 4] = [0.80, 0.78, 0.70, 1.0];
 const SHIRT: [f32; 4] = [0.16, 0.22, 0.40, 1.0];
 const VH_GLOVE: [f32; 4] = [0.70, 0.06, 0.05, 1.0];
 const YOUR_GLOVE: [f32; 4] = [0.08, 0.22, 0.75, 1.0];
-const YOUR_HEAD: [f32; 4] = [0.45, 0.48, 0.55, 1.0];
+const YOUR_SHIRT: [f32; 4] = [0.30, 0.31, 0.33, 1.0];
+const CUFF: [f32; 4] = [0.92, 0.92, 0.88, 1.0];
+const HAIR: [f32; 4] = {
+    let h = crate::face::appearance::FaceStyle::DEFAULT.hair;
+    [h[0], h[1], h[2], 1.0]
+};
 const PROP: [f32; 4] = [0.85, 0.65, 0.12, 1.0];
 const STAND: [f32; 4] = [0.30, 0.30, 0.32, 1.0];
 const WHITE: [f32; 4] = [1.0, 1.0, 1.0, 1.0];
@@ -121,17 +232,6 @@ const AXIS_LEN: f32 = 0.06;
 /// the head body's centre, in the head body's frame.
 pub fn face_offset(plan: &BodyPlan) -> Vec3 {
     (BodyPlan::eye_centre(0) + BodyPlan::eye_centre(1)) / 2.0 - plan.segments[seg::HEAD].centre
-}
-
-fn colour_of(owner: Owner, body: usize, sim: &Sim) -> [f32; 4] {
-    match owner {
-        Owner::Vh(s) if s == seg::GLOVE_L || s == seg::GLOVE_R => VH_GLOVE,
-        Owner::Vh(seg::TORSO) => SHIRT,
-        Owner::Vh(_) => SKIN,
-        Owner::Opponent if body == sim.world.opponent[opp::HEAD] => YOUR_HEAD,
-        Owner::Opponent => YOUR_GLOVE,
-        Owner::Prop => PROP,
-    }
 }
 
 impl Frame {
@@ -154,9 +254,42 @@ impl Frame {
                 material: Material::Plain,
             },
         ];
+        let looks = Looks::of(&w.plan);
+        let body = posed(&looks.vh, &vh_pose(|s| w.pose(s), &w.plan));
+        let (you_head, you_gloves) = (
+            w.position(w.opponent[opp::HEAD]),
+            [opp::LEFT_GLOVE, opp::RIGHT_GLOVE].map(|g| w.position(w.opponent[g])),
+        );
+        let avatar = posed(&looks.you, &avatar_pose(&w.plan, you_head, you_gloves));
+        for d in [MeshKey::Body, MeshKey::Avatar] {
+            draws.push(Draw {
+                mesh: d,
+                model: Mat4::IDENTITY,
+                color: WHITE,
+                material: Material::Skin,
+            });
+        }
+        if view != View::First {
+            // Your head: a skin-coloured head under a short crop.
+            let (p, r) = (you_head, w.plan.opponent_head_radius);
+            for (centre, half, color) in [
+                (p, Vec3::new(0.88, 1.12, 1.0) * r, SKIN),
+                (
+                    p + Vec3::new(0.0, 0.035, 0.012),
+                    Vec3::new(0.93, 1.0, 0.98) * r,
+                    HAIR,
+                ),
+            ] {
+                draws.push(Draw {
+                    mesh: MeshKey::Sphere,
+                    model: Mat4::from_scale_rotation_translation(half, Quat::IDENTITY, centre),
+                    color,
+                    material: Material::Skin,
+                });
+            }
+        }
         for (i, b) in w.bodies.iter().enumerate() {
             match b.owner {
-                Owner::Vh(seg::HEAD) => continue, // the face mesh is the head
                 Owner::Vh(s) if s == seg::EYE_L || s == seg::EYE_R => {
                     let (p, q) = w.pose(i);
                     let r = crate::physics::body::eye::RADIUS;
@@ -168,8 +301,10 @@ impl Frame {
                     });
                     continue;
                 }
-                Owner::Opponent if view == View::First && i == w.opponent[opp::HEAD] => continue,
-                _ => {}
+                // The skinned bodies and the face stand for the VH's other
+                // segments and your head and gloves.
+                Owner::Vh(_) | Owner::Opponent => continue,
+                Owner::Prop => {}
             }
             let c = &w.phys.colliders[b.collider];
             let pose = c.position();
@@ -190,7 +325,7 @@ impl Frame {
             draws.push(Draw {
                 mesh,
                 model: at * local,
-                color: colour_of(b.owner, i, sim),
+                color: PROP,
                 material: Material::Plain,
             });
         }
@@ -199,13 +334,25 @@ impl Frame {
             mesh: MeshKey::Face,
             model: Mat4::from_rotation_translation(head_q, head_p)
                 * Mat4::from_translation(face_offset(&w.plan)),
-            color: SKIN,
-            material: Material::Plain,
+            color: WHITE,
+            material: Material::Skin,
         });
+        let face = face_vertices(sim);
+        let face_frame = Mat4::from_rotation_translation(head_q, head_p)
+            * Mat4::from_translation(face_offset(&w.plan));
+        draws.extend(mouth(sim, &face, face_frame));
         let mut frame = Frame {
             camera,
             draws,
-            face: face_vertices(sim),
+            face,
+            body,
+            avatar,
+            plan: w.plan.clone(),
+            avatar_indices: if view == View::First {
+                AvatarPart::Arms
+            } else {
+                AvatarPart::Whole
+            },
             lines: Vec::new(),
             labels: Vec::new(),
         };
@@ -309,6 +456,56 @@ pub fn capsule_key(half_height: f32, radius: f32) -> MeshKey {
 }
 
 /// The face deformed by the current face state, with recomputed normals.
+/// The mouth's inside, seen when the lips part: a dark cavity behind the
+/// lips, the upper teeth fixed in the skull and the lower ones carried by
+/// the jaw (they follow the middle of the lower lip's rim), all in the
+/// face frame `face_frame`. Teeth are drawn only when the lips are apart
+/// (closed lips hide them; drawn, they would show through the seam).
+fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
+    let mesh = &sim.model().face.mesh;
+    let l = &mesh.landmarks;
+    let mid = mesh.rims.lower_lip[mesh.rims.lower_lip.len() / 2] as usize;
+    let top = mesh.rims.upper_lip[mesh.rims.upper_lip.len() / 2] as usize;
+    let gap = Vec3::from_array(face[top].pos).distance(Vec3::from_array(face[mid].pos));
+    // How far the jaw has dropped: the lower lip's fall (its other moves,
+    // pouting or pressing up, are the lips', not the jaw's).
+    let drop = (face[mid].pos[1] - mesh.positions[mid].y).min(0.0);
+    let jaw = Vec3::new(0.0, drop, 0.0);
+    let lip_z = l.mouth_centre.z;
+    let w = l.mouth_corner.x;
+    let ellipsoid = |centre: Vec3, half: Vec3, color| Draw {
+        mesh: MeshKey::Sphere,
+        model: face_frame * Mat4::from_scale_rotation_translation(half, Quat::IDENTITY, centre),
+        color,
+        material: Material::Plain,
+    };
+    let y = l.mouth_centre.y;
+    let mut parts = vec![ellipsoid(
+        Vec3::new(0.0, y - 0.004, lip_z - 0.040) + jaw * 0.5,
+        Vec3::new(w * 0.85, 0.016 + jaw.length() * 0.3, 0.026),
+        MOUTH,
+    )];
+    if gap < TEETH_SHOW_GAP {
+        return parts;
+    }
+    parts.extend([
+        ellipsoid(
+            Vec3::new(0.0, y + 0.006, lip_z - 0.016),
+            Vec3::new(w * 0.62, 0.0052, 0.012),
+            TEETH,
+        ),
+        ellipsoid(
+            Vec3::new(0.0, y - 0.006, lip_z - 0.018) + jaw * 0.8,
+            Vec3::new(w * 0.55, 0.0045, 0.011),
+            TEETH,
+        ),
+    ]);
+    parts
+}
+
+/// Lips further apart than this show the teeth, m.
+const TEETH_SHOW_GAP: f32 = 0.003;
+
 fn face_vertices(sim: &Sim) -> Vec<Vertex> {
     let mesh = &sim.model().face.mesh;
     let mut pos = vec![Vec3::ZERO; mesh.positions.len()];
@@ -316,7 +513,8 @@ fn face_vertices(sim: &Sim) -> Vec<Vertex> {
     let normals = compute_normals(&pos, &mesh.triangles);
     pos.iter()
         .zip(&normals)
-        .map(|(p, n)| Vertex::new(*p, *n))
+        .zip(&sim.model().face.colours)
+        .map(|((p, n), c)| Vertex::coloured(*p, *n, *c))
         .collect()
 }
 
@@ -350,11 +548,14 @@ mod tests {
         assert!(!f.lines.is_empty() && f.lines.len().is_multiple_of(2));
         assert!(!f.labels.is_empty());
         assert_eq!(f, Frame::build(&sim, View::ORBIT, all, 1.5));
+        assert_eq!(f.body.len(), Looks::of(&f.plan).vh.vertices().len());
+        assert_eq!(f.avatar_indices, AvatarPart::Whole);
         let first = Frame::build(&sim, View::First, Overlays::default(), 1.5);
         assert_eq!(
-            first.draws.len() + 1,
+            first.draws.len() + 2,
             f.draws.len(),
-            "no own head in first person"
+            "no own head (skin and hair) in first person"
         );
+        assert_eq!(first.avatar_indices, AvatarPart::Arms);
     }
 }

@@ -5,7 +5,7 @@ use std::f32::consts::{PI, TAU};
 
 use glam::Vec3;
 
-/// One mesh vertex: position and unit normal, local frame.
+/// One mesh vertex: position, unit normal (local frame) and colour.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct Vertex {
@@ -13,14 +13,22 @@ pub struct Vertex {
     pub pos: [f32; 3],
     /// Unit normal.
     pub normal: [f32; 3],
+    /// Linear RGBA, multiplied by the instance's colour.
+    pub color: [f32; 4],
 }
 
 impl Vertex {
-    /// A vertex from glam vectors.
+    /// A white vertex from glam vectors (the instance gives the colour).
     pub fn new(pos: Vec3, normal: Vec3) -> Self {
+        Self::coloured(pos, normal, [1.0; 4])
+    }
+
+    /// A vertex with its own colour.
+    pub fn coloured(pos: Vec3, normal: Vec3, color: [f32; 4]) -> Self {
         Vertex {
             pos: pos.to_array(),
             normal: normal.to_array(),
+            color,
         }
     }
 }

@@ -8,7 +8,7 @@ use std::num::NonZeroU64;
 use glam::{Mat3, Mat4, Vec3};
 use wgpu::util::DeviceExt;
 
-use super::frame::{Frame, LineVertex, MeshKey};
+use super::frame::{AvatarPart, Frame, LineVertex, Looks, MeshKey};
 use super::geometry::{self, MeshData, Vertex};
 
 /// Rendering errors.
@@ -130,6 +130,116 @@ impl Growable {
     }
 }
 
+/// Draws the renderer's last picture into another render pass (the
+/// window's), texel for texel. Showing the picture as an egui image costs
+/// egui's textured, colour-converting shader on every window pixel: 20 ms
+/// a frame at 1280x720 on a software Vulkan, more than the scene itself.
+pub struct Blit {
+    pipeline: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+    /// The target decodes sRGB itself (so it is handed linear texels).
+    srgb_target: bool,
+}
+
+impl Blit {
+    /// A blit into passes on targets of `format`.
+    pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Blit {
+        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("shisen blit"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("blit.wgsl").into()),
+        });
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("shisen blit"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::FRAGMENT,
+                ty: wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+                count: None,
+            }],
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("shisen blit"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("shisen blit"),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &shader,
+                entry_point: Some("vs_blit"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: None,
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &shader,
+                entry_point: Some("fs_blit"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Blit {
+            pipeline,
+            layout,
+            srgb_target: format.is_srgb(),
+        }
+    }
+
+    /// What [`Blit::draw`] needs to draw `renderer`'s last picture (none
+    /// before the first render).
+    pub fn bind(&self, renderer: &Renderer) -> Option<BlitBind> {
+        let target = renderer.target.as_ref()?;
+        let view = if self.srgb_target {
+            target.color_view.clone()
+        } else {
+            renderer.color_view_unorm()?
+        };
+        let group = renderer
+            .device
+            .create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("shisen blit"),
+                layout: &self.layout,
+                entries: &[wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&view),
+                }],
+            });
+        Some(BlitBind {
+            pipeline: self.pipeline.clone(),
+            group,
+        })
+    }
+}
+
+/// A bound blit, ready to draw into a pass (cheap to clone).
+#[derive(Clone)]
+pub struct BlitBind {
+    pipeline: wgpu::RenderPipeline,
+    group: wgpu::BindGroup,
+}
+
+impl BlitBind {
+    /// Cover the pass's viewport with the picture.
+    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &self.group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+}
+
 /// The renderer and its GPU resources.
 pub struct Renderer {
     device: wgpu::Device,
@@ -144,7 +254,9 @@ pub struct Renderer {
     instance_bind: wgpu::BindGroup,
     lines: Growable,
     meshes: HashMap<MeshKey, GpuMesh>,
-    face: Option<(GpuMesh, usize)>,
+    /// Meshes whose vertices change every frame (face, bodies), with
+    /// their vertex count.
+    dynamic: HashMap<MeshKey, (GpuMesh, usize)>,
     target: Option<Target>,
 }
 
@@ -185,9 +297,32 @@ fn bind(
 }
 
 impl Renderer {
-    /// Build the pipelines on `device` (a clone of the handle is kept).
+    /// Build the pipelines on `device` (a clone of the handle is kept),
+    /// with 4x multisampling where the adapter has it.
     pub fn new(adapter: &wgpu::Adapter, device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
-        let samples = if adapter
+        Self::with_samples(adapter, device, queue, 4)
+    }
+
+    /// The renderer for an interactive window: multisampling off on a
+    /// software rasteriser (lavapipe, llvmpipe), where 4x costs three
+    /// times a frame (measured 13 against 20 frames per second at
+    /// 1280x720 on two cores); 4x on a GPU.
+    pub fn for_window(adapter: &wgpu::Adapter, device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
+        let software = adapter.get_info().device_type == wgpu::DeviceType::Cpu;
+        Self::with_samples(adapter, device, queue, if software { 1 } else { 4 })
+    }
+
+    /// Build the pipelines with at most `max_samples` (1 or 4) samples a
+    /// pixel.
+    pub fn with_samples(
+        adapter: &wgpu::Adapter,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        max_samples: u32,
+    ) -> Self {
+        let samples = if max_samples < 4 {
+            1
+        } else if adapter
             .get_texture_format_features(COLOR_FORMAT)
             .flags
             .sample_count_supported(4)
@@ -220,7 +355,7 @@ impl Renderer {
             bind_group_layouts: &[Some(&globals_layout), Some(&instance_layout)],
             immediate_size: 0,
         });
-        let mesh_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3];
+        let mesh_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x4];
         let line_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x4];
         let pipeline = |vs: &str,
                         fs: &str,
@@ -304,7 +439,7 @@ impl Renderer {
             instance_bind,
             lines,
             meshes: HashMap::new(),
-            face: None,
+            dynamic: HashMap::new(),
             target: None,
         };
         r.upload(MeshKey::Sphere, &geometry::sphere());
@@ -405,21 +540,27 @@ impl Renderer {
         })
     }
 
-    fn face_mesh(&mut self, frame: &Frame, triangles: &[[u32; 3]]) {
-        let stale = self
-            .face
-            .as_ref()
-            .is_none_or(|(m, n)| *n != frame.face.len() || m.count as usize != triangles.len() * 3);
-        if stale {
-            let data = MeshData {
-                vertices: frame.face.clone(),
-                indices: triangles.iter().flatten().copied().collect(),
-            };
-            let mesh = self.make_mesh(&data, wgpu::BufferUsages::COPY_DST);
-            self.face = Some((mesh, frame.face.len()));
-        } else if let Some((m, _)) = &self.face {
-            self.queue
-                .write_buffer(&m.vertices, 0, bytemuck::cast_slice(&frame.face));
+    /// Upload this frame's vertices of a dynamic mesh; its buffers are
+    /// rebuilt only when the vertex or index count changes.
+    fn dynamic_mesh(
+        &mut self,
+        key: MeshKey,
+        vertices: &[Vertex],
+        indices: impl FnOnce() -> Vec<u32>,
+    ) {
+        match self.dynamic.get(&key) {
+            Some((m, n)) if *n == vertices.len() => {
+                self.queue
+                    .write_buffer(&m.vertices, 0, bytemuck::cast_slice(vertices));
+            }
+            _ => {
+                let data = MeshData {
+                    vertices: vertices.to_vec(),
+                    indices: indices(),
+                };
+                let mesh = self.make_mesh(&data, wgpu::BufferUsages::COPY_DST);
+                self.dynamic.insert(key, (mesh, vertices.len()));
+            }
         }
     }
 
@@ -439,7 +580,32 @@ impl Renderer {
                 self.upload(d.mesh, &data);
             }
         }
-        self.face_mesh(frame, face_triangles);
+        let face_stale = self
+            .dynamic
+            .get(&MeshKey::Face)
+            .is_some_and(|(m, _)| m.count as usize != face_triangles.len() * 3);
+        if face_stale {
+            self.dynamic.remove(&MeshKey::Face);
+        }
+        self.dynamic_mesh(MeshKey::Face, &frame.face, || {
+            face_triangles.iter().flatten().copied().collect()
+        });
+        let looks = Looks::of(&frame.plan);
+        self.dynamic_mesh(MeshKey::Body, &frame.body, || {
+            looks.indices(MeshKey::Body, AvatarPart::Whole).to_vec()
+        });
+        let part = frame.avatar_indices;
+        let avatar_count = looks.indices(MeshKey::Avatar, part).len() as u32;
+        if self
+            .dynamic
+            .get(&MeshKey::Avatar)
+            .is_some_and(|(m, _)| m.count != avatar_count)
+        {
+            self.dynamic.remove(&MeshKey::Avatar);
+        }
+        self.dynamic_mesh(MeshKey::Avatar, &frame.avatar, || {
+            looks.indices(MeshKey::Avatar, part).to_vec()
+        });
 
         let cam = &frame.camera;
         let globals = Globals {
@@ -524,10 +690,12 @@ impl Renderer {
             pass.set_bind_group(0, &self.globals_bind, &[]);
             for (i, d) in frame.draws.iter().enumerate() {
                 let mesh = match d.mesh {
-                    MeshKey::Face => match &self.face {
-                        Some((m, _)) => m,
-                        None => continue,
-                    },
+                    MeshKey::Face | MeshKey::Body | MeshKey::Avatar => {
+                        match self.dynamic.get(&d.mesh) {
+                            Some((m, _)) => m,
+                            None => continue,
+                        }
+                    }
                     key => &self.meshes[&key],
                 };
                 pass.set_bind_group(

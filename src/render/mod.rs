@@ -9,6 +9,7 @@
 //! `shisen render`, the tests and the bench; the window shares its eframe
 //! device with the same renderer.
 
+pub mod body;
 mod camera;
 mod frame;
 pub mod geometry;
@@ -16,7 +17,7 @@ mod gpu;
 
 pub use camera::{Camera, View};
 pub use frame::{Draw, Frame, Label, LineVertex, Material, MeshKey, Overlays, face_offset};
-pub use gpu::{COLOR_FORMAT, COLOR_FORMAT_UNORM, RenderError, Renderer};
+pub use gpu::{Blit, BlitBind, COLOR_FORMAT, COLOR_FORMAT_UNORM, RenderError, Renderer};
 
 use std::path::Path;
 

@@ -14,7 +14,7 @@ struct Instance {
     // Inverse transpose of the model's upper 3x3, in a mat4 for alignment.
     normal: mat4x4<f32>,
     color: vec4<f32>,
-    // x: material (0 plain, 1 eye, 2 floor).
+    // x: material (0 plain, 1 eye, 2 floor, 3 skin).
     params: vec4<f32>,
 };
 
@@ -26,11 +26,17 @@ struct VOut {
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) local: vec3<f32>,
+    @location(3) color: vec4<f32>,
 };
 
 @vertex
-fn vs_mesh(@location(0) pos: vec3<f32>, @location(1) normal: vec3<f32>) -> VOut {
+fn vs_mesh(
+    @location(0) pos: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) color: vec4<f32>,
+) -> VOut {
     var o: VOut;
+    o.color = color;
     let w = inst.model * vec4<f32>(pos, 1.0);
     o.clip = g.view_proj * w;
     o.world = w.xyz;
@@ -73,9 +79,25 @@ fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
     if (dot(n, view_dir) < 0.0) {
         n = -n;
     }
-    var base = inst.color.rgb;
+    var base = inst.color.rgb * v.color.rgb;
     var shine = 0.25;
     let material = u32(inst.params.x + 0.5);
+    let key = normalize(-g.key_dir.xyz);
+    let fill = normalize(-g.fill_dir.xyz);
+    let h = normalize(key + view_dir);
+    if (material == 3u) {
+        // Skin: light wraps past the terminator (scattered under the
+        // surface) and reddens there; a weak, broad sheen instead of a
+        // plastic highlight; a faint rim where the skin turns away.
+        let wrap = 0.45;
+        let kd = max((dot(n, key) + wrap) / (1.0 + wrap), 0.0);
+        let fd = max((dot(n, fill) + wrap) / (1.0 + wrap), 0.0);
+        let scatter = vec3<f32>(1.0, 0.55, 0.45) * 0.18 * kd * (1.0 - kd) * 4.0;
+        let rim = pow(1.0 - max(dot(n, view_dir), 0.0), 3.0) * 0.12;
+        let sheen = 0.06 * pow(max(dot(n, h), 0.0), 12.0);
+        let lit = base * (0.20 + 0.80 * kd + 0.30 * fd) + base * scatter + vec3<f32>(sheen + rim * 0.5);
+        return vec4<f32>(lit, 1.0);
+    }
     if (material == 1u) {
         base = eye_colour(v.local);
         shine = 0.8;
@@ -85,11 +107,8 @@ fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
         base = mix(vec3<f32>(0.34, 0.34, 0.36), vec3<f32>(0.42, 0.42, 0.44), checker);
         shine = 0.05;
     }
-    let key = normalize(-g.key_dir.xyz);
-    let fill = normalize(-g.fill_dir.xyz);
     let diffuse = 0.85 * max(dot(n, key), 0.0) + 0.35 * max(dot(n, fill), 0.0);
     let ambient = 0.22;
-    let h = normalize(key + view_dir);
     let spec = shine * pow(max(dot(n, h), 0.0), 40.0);
     let colour = base * (ambient + diffuse) + vec3<f32>(spec);
     return vec4<f32>(colour, 1.0);

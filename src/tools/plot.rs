@@ -55,6 +55,26 @@ fn register_font() {
     });
 }
 
+/// Write `text` centred at (`x`, `y`) (pixels, top of the text) on an RGB
+/// image, light grey, `px` pixels high (captions of contact sheets).
+pub fn caption(image: &mut image::RgbImage, x: i32, y: i32, text: &str, px: u32) -> Result<()> {
+    register_font();
+    let (w, h) = image.dimensions();
+    let root = BitMapBackend::with_buffer(image.as_mut(), (w, h)).into_drawing_area();
+    let style = ("sans-serif", px)
+        .into_font()
+        .color(&RGBColor(225, 225, 225))
+        .pos(plotters::style::text_anchor::Pos::new(
+            plotters::style::text_anchor::HPos::Center,
+            plotters::style::text_anchor::VPos::Top,
+        ));
+    root.draw_text(text, &style, (x, y))
+        .map_err(|e| anyhow::anyhow!("caption {text:?}: {e}"))?;
+    root.present()
+        .map_err(|e| anyhow::anyhow!("caption {text:?}: {e}"))?;
+    Ok(())
+}
+
 const COLORS: [RGBColor; 6] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),

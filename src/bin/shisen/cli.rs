@@ -238,12 +238,21 @@ pub enum Command {
         /// Image size, WxH pixels.
         #[arg(long, default_value = "1280x720", value_parser = parse_size)]
         size: (u32, u32),
-        /// Camera: `first` (from your head), `orbit` or `face` (close-up).
+        /// Camera: `first` (from your head), `orbit`, `face` (close-up),
+        /// or `orbit:YAW,PITCH,DISTANCE` (radians, radians, metres about
+        /// the VH's head).
         #[arg(long, default_value = "first", value_parser = parse_view)]
         view: View,
         /// Overlays to draw (repeatable).
         #[arg(long, value_enum)]
         overlay: Vec<OverlayArg>,
+        /// Write an animation (APNG, `--out` still ends in .png) from
+        /// `--at` to this time instead of one picture.
+        #[arg(long)]
+        until: Option<f64>,
+        /// Frames per second of the animation.
+        #[arg(long, default_value_t = 25)]
+        fps: u32,
     },
 }
 
@@ -258,6 +267,19 @@ pub enum FaceCommand {
         /// Mesh resolution (latitude bands).
         #[arg(long, default_value_t = 48)]
         rows: usize,
+    },
+    /// Render every one of the 35 emotions at full intensity, face view,
+    /// into one captioned contact sheet (PNG).
+    Sheet {
+        /// Output PNG.
+        #[arg(long)]
+        out: PathBuf,
+        /// Mesh resolution (latitude bands).
+        #[arg(long, default_value_t = 100)]
+        rows: usize,
+        /// Size of one face, WxH pixels.
+        #[arg(long, default_value = "220x250", value_parser = parse_size)]
+        cell: (u32, u32),
     },
     /// Turn per-subject settings (CSV: expression, subject, one column per
     /// muscle) into a muscle database with the thesis's rule (drop values
@@ -316,7 +338,11 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
 }
 
 pub fn parse_view(s: &str) -> Result<View, String> {
-    View::parse(s).ok_or_else(|| format!("expected first, orbit or face, got {s}"))
+    View::parse(s).ok_or_else(|| {
+        format!(
+            "expected first, orbit, face or orbit:YAW,PITCH,DISTANCE (distance 0.2-10 m), got {s}"
+        )
+    })
 }
 
 pub fn load(scene: &str) -> Result<LoadedScene> {

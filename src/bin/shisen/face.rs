@@ -21,6 +21,7 @@ pub fn face_cmd(c: FaceCommand) -> Result<()> {
                 face.mesh.triangles.len()
             );
         }
+        FaceCommand::Sheet { out, rows, cell } => sheet(&out, rows, cell)?,
         FaceCommand::Calibrate { csv, out } => {
             let params = calibrate::calibrate_file(&FaceParams::default_params(), &csv)?;
             std::fs::write(&out, params.to_ron())
@@ -28,5 +29,57 @@ pub fn face_cmd(c: FaceCommand) -> Result<()> {
             println!("muscle database written to {}", out.display());
         }
     }
+    Ok(())
+}
+
+/// Columns of the contact sheet (35 emotions: 7 x 5).
+const SHEET_COLUMNS: u32 = 7;
+/// Caption band under each face, pixels.
+const CAPTION: u32 = 22;
+
+/// Every emotion at full intensity, 1.5 s after a fast onset, from the
+/// face camera, in one captioned grid.
+fn sheet(out: &std::path::Path, rows: usize, cell: (u32, u32)) -> Result<()> {
+    use shisen::face::tables::Emotion;
+    use shisen::render::{Headless, Overlays, View, write_png};
+    use shisen::scene::LoadedScene;
+    if !(24..=400).contains(&rows) {
+        anyhow::bail!("--rows: must be 24-400, got {rows}");
+    }
+    let all: Vec<Emotion> = Emotion::all().collect();
+    let n = all.len() as u32;
+    let (cw, ch) = (cell.0, cell.1 + CAPTION);
+    let grid = (SHEET_COLUMNS, n.div_ceil(SHEET_COLUMNS));
+    let mut sheet = image::RgbImage::from_pixel(cw * grid.0, ch * grid.1, image::Rgb([30, 32, 38]));
+    let mut gpu = Headless::new()?;
+    for (k, e) in all.iter().enumerate() {
+        let text = format!(
+            "Scene(duration: 2.0, vh: (behaviour: (attacks: false), oculomotor: (fixation: (enabled: false)), face: (rows: {rows})), timeline: [(at: 0.0, do: Emotion(emotion: {e:?}, speed: Fast))])"
+        );
+        let loaded = LoadedScene::from_str(&text, std::path::Path::new("<sheet>"), None)?;
+        let mut sim = loaded.sim();
+        while sim.time() < 1.5 {
+            sim.step();
+        }
+        let face = gpu.snapshot(&sim, View::FACE, Overlays::default(), cell)?;
+        let (x, y) = ((k as u32 % grid.0) * cw, (k as u32 / grid.0) * ch);
+        for (px, py, p) in face.enumerate_pixels() {
+            sheet.put_pixel(x + px, y + py, image::Rgb([p[0], p[1], p[2]]));
+        }
+        shisen::tools::plot::caption(
+            &mut sheet,
+            (x + cw / 2) as i32,
+            (y + cell.1 + 3) as i32,
+            &format!("{e:?}"),
+            16,
+        )?;
+    }
+    write_png(&image::DynamicImage::ImageRgb8(sheet).to_rgba8(), out)?;
+    println!(
+        "{}: {n} emotions, {}x{} faces, {rows} rows",
+        out.display(),
+        cell.0,
+        cell.1
+    );
     Ok(())
 }

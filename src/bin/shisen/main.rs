@@ -29,8 +29,15 @@ fn report(r: Result<()>) -> ExitCode {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    if matches!(cli.command, Some(Command::Render { .. }))
-        && std::env::var_os("XDG_RUNTIME_DIR").is_none()
+    if matches!(
+        cli.command,
+        Some(
+            Command::Render { .. }
+                | Command::Face {
+                    command: FaceCommand::Sheet { .. }
+                }
+        )
+    ) && std::env::var_os("XDG_RUNTIME_DIR").is_none()
         && std::env::var_os("NODEVICE_SELECT").is_none()
     {
         // Offscreen rendering needs no display; without one, Mesa's implicit
@@ -218,7 +225,17 @@ fn main() -> ExitCode {
             size,
             view,
             overlay,
-        }) => match render(&scene, at, &out, size, view, &overlay) {
+            until,
+            fps,
+        }) => match render(
+            &scene,
+            at,
+            &out,
+            size,
+            view,
+            &overlay,
+            until.map(|u| (u, fps)),
+        ) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
                 eprintln!("error: {e:#}");

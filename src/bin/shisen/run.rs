@@ -23,9 +23,24 @@ pub fn render(
     size: (u32, u32),
     view: View,
     overlay: &[OverlayArg],
+    animation: Option<(f64, u32)>,
 ) -> Result<()> {
     if !(at.is_finite() && at >= 0.0) {
         anyhow::bail!("--at: must be a non-negative number of seconds, got {at}");
+    }
+    if let Some((until, fps)) = animation {
+        if !(until.is_finite() && until > at) {
+            anyhow::bail!("--until {until}: must be after --at ({at} s)");
+        }
+        if !(1..=60).contains(&fps) {
+            anyhow::bail!("--fps {fps}: must be 1-60");
+        }
+        if (until - at) * f64::from(fps) > 600.0 {
+            anyhow::bail!(
+                "--until: at most 600 frames ({:.0} asked)",
+                (until - at) * f64::from(fps)
+            );
+        }
     }
     if at > LONG_RUN {
         anyhow::bail!("--at {at}: at most {LONG_RUN} s of simulated time");
@@ -60,7 +75,21 @@ pub fn render(
     };
     let mut gpu = Headless::new()?;
     let image = gpu.snapshot(&sim, view, overlays, size)?;
-    write_png(&image, out)?;
+    if let Some((until, fps)) = animation {
+        let mut frames = vec![image];
+        let n = ((until - at) * f64::from(fps)).round() as usize;
+        for k in 1..=n {
+            let t = at + k as f64 / f64::from(fps);
+            while sim.time() + DT / 2.0 < t {
+                sim.step();
+            }
+            frames.push(gpu.snapshot(&sim, view, overlays, size)?);
+        }
+        write_apng(&frames, fps, out)?;
+        println!("{} frames at {fps} fps", frames.len());
+    } else {
+        write_png(&image, out)?;
+    }
     println!(
         "{} at {:.3} s -> {} ({}x{}, {})",
         loaded.scene.name,
@@ -70,6 +99,24 @@ pub fn render(
         size.1,
         gpu.info.name
     );
+    Ok(())
+}
+
+/// Write `frames` as an animated PNG (APNG) playing at `fps`, looping.
+fn write_apng(frames: &[image::RgbaImage], fps: u32, out: &std::path::Path) -> Result<()> {
+    let (w, h) = frames[0].dimensions();
+    let file =
+        std::fs::File::create(out).with_context(|| format!("cannot write {}", out.display()))?;
+    let mut enc = png::Encoder::new(std::io::BufWriter::new(file), w, h);
+    enc.set_color(png::ColorType::Rgba);
+    enc.set_depth(png::BitDepth::Eight);
+    enc.set_animated(frames.len() as u32, 0)?;
+    enc.set_frame_delay(1, fps as u16)?;
+    let mut writer = enc.write_header()?;
+    for f in frames {
+        writer.write_image_data(f.as_raw())?;
+    }
+    writer.finish()?;
     Ok(())
 }
 
