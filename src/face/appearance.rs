@@ -113,8 +113,8 @@ fn to_polyline(p: Vec3, pts: &[Vec3]) -> (f32, f32) {
 fn brow(p: Vec3, l: &Landmarks) -> f32 {
     let side = |f: fn(Vec3) -> Vec3| {
         let pts = [
-            f(l.brow_inner - Vec3::new(0.004, 0.002, 0.0)),
-            f(l.brow_inner),
+            f(l.brow_inner - Vec3::new(0.002, 0.0, 0.0)),
+            f(l.brow_inner + Vec3::new(0.003, 0.001, 0.0)),
             f(l.brow_mid + Vec3::new(0.0, 0.001, 0.0)),
             f(l.brow_outer),
             f(l.brow_outer + Vec3::new(0.006, -0.005, -0.004)),

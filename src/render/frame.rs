@@ -239,21 +239,9 @@ impl Frame {
     pub fn build(sim: &Sim, view: View, overlays: Overlays, aspect: f32) -> Frame {
         let camera = Camera::of(view, sim, aspect);
         let w = &sim.world;
-        let mut draws = vec![
-            Draw {
-                mesh: MeshKey::Floor,
-                model: Mat4::from_scale(Vec3::splat(4.0)),
-                color: WHITE,
-                material: Material::Floor,
-            },
-            // The rigid stand the VH's torso sits on (not a physics body).
-            Draw {
-                mesh: capsule_key(0.5, 0.035),
-                model: Mat4::from_translation(Vec3::new(0.0, 0.5, 0.0)),
-                color: STAND,
-                material: Material::Plain,
-            },
-        ];
+        // Nearest first, the floor last: a software rasteriser then skips
+        // shading the floor behind the bodies (early depth test).
+        let mut draws = Vec::new();
         let looks = Looks::of(&w.plan);
         let body = posed(&looks.vh, &vh_pose(|s| w.pose(s), &w.plan));
         let (you_head, you_gloves) = (
@@ -261,7 +249,7 @@ impl Frame {
             [opp::LEFT_GLOVE, opp::RIGHT_GLOVE].map(|g| w.position(w.opponent[g])),
         );
         let avatar = posed(&looks.you, &avatar_pose(&w.plan, you_head, you_gloves));
-        for d in [MeshKey::Body, MeshKey::Avatar] {
+        for d in [MeshKey::Avatar, MeshKey::Body] {
             draws.push(Draw {
                 mesh: d,
                 model: Mat4::IDENTITY,
@@ -341,6 +329,21 @@ impl Frame {
         let face_frame = Mat4::from_rotation_translation(head_q, head_p)
             * Mat4::from_translation(face_offset(&w.plan));
         draws.extend(mouth(sim, &face, face_frame));
+        draws.extend([
+            Draw {
+                mesh: MeshKey::Floor,
+                model: Mat4::from_scale(Vec3::splat(4.0)),
+                color: WHITE,
+                material: Material::Floor,
+            },
+            // The rigid stand the VH's torso sits on (not a physics body).
+            Draw {
+                mesh: capsule_key(0.5, 0.035),
+                model: Mat4::from_translation(Vec3::new(0.0, 0.5, 0.0)),
+                color: STAND,
+                material: Material::Plain,
+            },
+        ]);
         let mut frame = Frame {
             camera,
             draws,

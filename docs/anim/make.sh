@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Regenerate the README's animation: the VH shifts its gaze 50 deg to the
+# left (eyes first, then the head) and back, blinking with the shifts.
+# Written by the program (APNG) from scenes/gaze_shift_blink.ron.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+bin=target/release/shisen
+[ -x "$bin" ] || cargo build --release
+"$bin" render scenes/gaze_shift_blink.ron --view orbit:0.45,0.32,0.75 --size 400x300 \
+  --at 0.3 --until 2.3 --fps 15 --out docs/anim/gaze_shift_blink.png
