@@ -109,8 +109,10 @@ fn to_polyline(p: Vec3, pts: &[Vec3]) -> (f32, f32) {
 }
 
 /// How much brow covers the point (0..1): a band along the brow
-/// landmarks, thick at the head and tapering to the tail.
-fn brow(p: Vec3, l: &Landmarks) -> f32 {
+/// landmarks, thick at the head and tapering to the tail. `soft` is the
+/// half-width of its soft edge (wider on a coarse mesh, so the band never
+/// falls between vertices and breaks into dashes).
+fn brow(p: Vec3, l: &Landmarks, soft: f32) -> f32 {
     let side = |f: fn(Vec3) -> Vec3| {
         let pts = [
             f(l.brow_inner - Vec3::new(0.002, 0.0, 0.0)),
@@ -120,8 +122,8 @@ fn brow(p: Vec3, l: &Landmarks) -> f32 {
             f(l.brow_outer + Vec3::new(0.006, -0.005, -0.004)),
         ];
         let (d, t) = to_polyline(p, &pts);
-        let half = 0.0058 - 0.0032 * t;
-        smooth(half + 0.002, half - 0.002, d)
+        let half = (0.0058 - 0.0032 * t).max(soft);
+        smooth(half + soft, half - soft, d)
     };
     // Only the front of the face (not the inside of the lid shells).
     let front = smooth(-0.01, 0.0, p.z - l.brow_outer.z + 0.01);
@@ -131,7 +133,7 @@ fn brow(p: Vec3, l: &Landmarks) -> f32 {
 /// How much lip covers the point (0..1): the vermilion, an ellipse-like
 /// band above and below the mouth line, widest at the middle (with a
 /// Cupid's bow) and closing at the corners.
-fn lips(p: Vec3, l: &Landmarks) -> f32 {
+fn lips(p: Vec3, l: &Landmarks, soft: f32) -> f32 {
     let half_w = l.mouth_corner.x;
     let u = (p.x / half_w).abs();
     if u >= 1.0 || p.z < l.mouth_corner.z - 0.012 {
@@ -142,8 +144,7 @@ fn lips(p: Vec3, l: &Landmarks) -> f32 {
         1.0 + 0.18 * (-((u - 0.28) / 0.12).powi(2)).exp() - 0.15 * (-(u / 0.08).powi(2)).exp();
     let top = dims::MOUTH_Y + (l.upper_lip.y - dims::MOUTH_Y + 0.0025) * taper * bow;
     let bottom = dims::MOUTH_Y - (dims::MOUTH_Y - l.lower_lip.y + 0.0035) * taper;
-    let e = 0.0012;
-    smooth(top + e, top - e, p.y) * smooth(bottom - e, bottom + e, p.y)
+    smooth(top + soft, top - soft, p.y) * smooth(bottom - soft, bottom + soft, p.y)
 }
 
 /// How dark the lash line is at the point (0..1): within a millimetre or
@@ -163,6 +164,24 @@ fn flush(p: Vec3, l: &Landmarks) -> f32 {
     0.35 * smooth(0.024, 0.0, d) * smooth(-0.03, 0.0, p.z - c.z)
 }
 
+/// Each vertex's mean edge length (the mesh's local resolution), m.
+fn edge_length(mesh: &HeadMesh) -> Vec<f32> {
+    let mut sum = vec![(0.0, 0u32); mesh.positions.len()];
+    for t in &mesh.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
+            let len = mesh.positions[a].distance(mesh.positions[b]);
+            for i in [a, b] {
+                sum[i].0 += len;
+                sum[i].1 += 1;
+            }
+        }
+    }
+    sum.into_iter()
+        .map(|(s, n)| if n == 0 { 0.0 } else { s / n as f32 })
+        .collect()
+}
+
 /// Paint the rest mesh: one linear RGBA colour per vertex.
 pub fn paint(mesh: &HeadMesh, style: &FaceStyle) -> Vec<[f32; 4]> {
     let l = &mesh.landmarks;
@@ -174,12 +193,14 @@ pub fn paint(mesh: &HeadMesh, style: &FaceStyle) -> Vec<[f32; 4]> {
             .collect()
     };
     let (upper, lower) = (rim(&mesh.rims.upper_lid), rim(&mesh.rims.lower_lid));
+    let spacing = edge_length(mesh);
     mesh.positions
         .iter()
-        .map(|&p| {
+        .zip(spacing)
+        .map(|(&p, spacing)| {
             let mut c = mix(style.skin, style.flush, flush(p, l));
-            c = mix(c, style.lips, lips(p, l));
-            c = mix(c, style.brow, brow(p, l));
+            c = mix(c, style.lips, lips(p, l, (0.5 * spacing).max(0.0012)));
+            c = mix(c, style.brow, brow(p, l, (0.5 * spacing).max(0.002)));
             c = mix(c, style.lashes, lashes(p, &upper, &lower));
             c = mix(c, style.hair, hair(p));
             [c[0], c[1], c[2], 1.0]

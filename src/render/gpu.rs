@@ -312,25 +312,19 @@ impl Renderer {
         Self::with_samples(adapter, device, queue, if software { 1 } else { 4 })
     }
 
-    /// Build the pipelines with at most `max_samples` (1 or 4) samples a
-    /// pixel.
+    /// Build the pipelines with at most `max_samples` samples a pixel (4,
+    /// else 2, else 1, as the adapter supports; lavapipe has 4 and 1).
     pub fn with_samples(
         adapter: &wgpu::Adapter,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         max_samples: u32,
     ) -> Self {
-        let samples = if max_samples < 4 {
-            1
-        } else if adapter
-            .get_texture_format_features(COLOR_FORMAT)
-            .flags
-            .sample_count_supported(4)
-        {
-            4
-        } else {
-            1
-        };
+        let flags = adapter.get_texture_format_features(COLOR_FORMAT).flags;
+        let samples = [4, 2]
+            .into_iter()
+            .find(|&n| n <= max_samples && flags.sample_count_supported(n))
+            .unwrap_or(1);
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("shisen shader"),
             source: wgpu::ShaderSource::Wgsl(include_str!("shader.wgsl").into()),
