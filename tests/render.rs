@@ -35,12 +35,14 @@ fn run_to(sim: &mut Sim, t: f64) {
     }
 }
 
-/// Near-black pixels (the pupils) within `radius` px of `centre`: their centroid.
+/// Near-black pixels of the pupil's blue-black (not the lashes' brown-black)
+/// within `radius` px of `centre`: their centroid.
 fn pupil(img: &image::RgbaImage, centre: Vec2, radius: f32) -> Option<Vec2> {
     let (mut sum, mut n) = (Vec2::ZERO, 0.0);
     for (x, y, p) in img.enumerate_pixels() {
         let at = Vec2::new(x as f32 + 0.5, y as f32 + 0.5);
-        if at.distance(centre) <= radius && p.0[..3].iter().all(|&c| c < 40) {
+        let [r, _, b, _] = p.0;
+        if at.distance(centre) <= radius && p.0[..3].iter().all(|&c| c < 40) && b >= r {
             sum += at;
             n += 1.0;
         }

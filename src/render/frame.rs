@@ -38,6 +38,11 @@ pub enum MeshKey {
     /// Your skinned body ([`Frame::avatar`]; only its arms in the
     /// first-person view).
     Avatar,
+    /// The VH's eyelashes ([`Frame::lashes`], a triangle list in the face
+    /// frame).
+    Lashes,
+    /// A left ear ([`super::geometry::ear`]; mirrored for the right).
+    Ear,
 }
 
 /// How a surface is shaded.
@@ -107,6 +112,9 @@ pub struct Frame {
     pub draws: Vec<Draw>,
     /// Deformed face vertices in the face frame (drawn with [`MeshKey::Face`]).
     pub face: Vec<Vertex>,
+    /// Eyelashes on the deformed lid rims, face frame, a triangle list
+    /// ([`MeshKey::Lashes`]).
+    pub lashes: Vec<Vertex>,
     /// The VH's posed body, world frame ([`MeshKey::Body`], indexed by
     /// [`Looks::indices`]).
     pub body: Vec<Vertex>,
@@ -329,6 +337,27 @@ impl Frame {
         let face_frame = Mat4::from_rotation_translation(head_q, head_p)
             * Mat4::from_translation(face_offset(&w.plan));
         draws.extend(mouth(sim, &face, face_frame));
+        let lashes = lashes(&sim.model().face.mesh.rims, &face);
+        // Ears, rooted in the head just in front of where the face mesh's
+        // ear bumps stand (the lobe landmark), the right one mirrored.
+        let lobe = sim.model().face.mesh.landmarks.ear_lobe;
+        for side in [1.0f32, -1.0] {
+            let root = Vec3::new(side * (lobe.x + 0.010), lobe.y + 0.030, lobe.z + 0.008);
+            draws.push(Draw {
+                mesh: MeshKey::Ear,
+                model: face_frame
+                    * Mat4::from_translation(root)
+                    * Mat4::from_scale(Vec3::new(side, 1.0, 1.0)),
+                color: EAR,
+                material: Material::Skin,
+            });
+        }
+        draws.push(Draw {
+            mesh: MeshKey::Lashes,
+            model: face_frame,
+            color: WHITE,
+            material: Material::Plain,
+        });
         draws.extend([
             Draw {
                 mesh: MeshKey::Floor,
@@ -348,6 +377,7 @@ impl Frame {
             camera,
             draws,
             face,
+            lashes,
             body,
             avatar,
             plan: w.plan.clone(),
@@ -508,6 +538,56 @@ fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
 
 /// Lips further apart than this show the teeth, m.
 const TEETH_SHOW_GAP: f32 = 0.003;
+
+/// Lashes, m: upper and lower length at mid-lid (Thibaut et al. 2010,
+/// Br. J. Dermatol. 163:1023: upper 8-12 mm, lower 6-8 mm; shorter here,
+/// seen curled).
+/// Ears are a little redder than the face.
+const EAR: [f32; 4] = {
+    let s = crate::face::appearance::FaceStyle::DEFAULT.skin;
+    [s[0] * 1.04, s[1] * 0.95, s[2] * 0.95, 1.0]
+};
+
+const LASH_LENGTH: [f32; 2] = [0.007, 0.0018];
+const LASH: [f32; 4] = {
+    let l = crate::face::appearance::FaceStyle::DEFAULT.lashes;
+    [l[0], l[1], l[2], 1.0]
+};
+
+/// Eyelashes: a tapered, curled fringe on each lid rim, rooted on the
+/// deformed rim vertices so it rides every lid movement and blink. The
+/// upper fringe sweeps forward and up, the lower forward and down; both
+/// taper to nothing at the eye corners. A triangle list, face frame.
+fn lashes(rims: &crate::face::mesh::Rims, face: &[Vertex]) -> Vec<Vertex> {
+    let mut out = Vec::new();
+    for (rim, len, lift) in rims
+        .upper_lid
+        .iter()
+        .map(|r| (r, LASH_LENGTH[0], 1.0))
+        .chain(rims.lower_lid.iter().map(|r| (r, LASH_LENGTH[1], -1.0)))
+    {
+        let n = rim.len();
+        let strand = |i: usize| {
+            let v = &face[rim[i] as usize];
+            let (p, nrm) = (Vec3::from_array(v.pos), Vec3::from_array(v.normal));
+            let xi = 2.0 * i as f32 / (n - 1).max(1) as f32 - 1.0;
+            let l = len * (1.0 - xi * xi).max(0.0).sqrt();
+            let out_dir = (nrm + Vec3::Z).normalize_or(Vec3::Z);
+            let mid = p + out_dir * l * 0.6 + Vec3::Y * lift * l * 0.08;
+            let tip = p + out_dir * l * 0.9 + Vec3::Y * lift * l * 0.35;
+            [p, mid, tip]
+        };
+        for i in 0..n.saturating_sub(1) {
+            let (a, b) = (strand(i), strand(i + 1));
+            for k in 0..2 {
+                let quad = [a[k], b[k], b[k + 1], a[k], b[k + 1], a[k + 1]];
+                let normal = (b[k] - a[k]).cross(a[k + 1] - a[k]).normalize_or(Vec3::Z);
+                out.extend(quad.map(|p| Vertex::coloured(p, normal, LASH)));
+            }
+        }
+    }
+    out
+}
 
 fn face_vertices(sim: &Sim) -> Vec<Vertex> {
     let mesh = &sim.model().face.mesh;

@@ -125,6 +125,59 @@ pub fn floor() -> MeshData {
     }
 }
 
+/// A left ear (outer surface, two-sided), in its own frame: metres, +X
+/// out of the head, +Y up, +Z forward, the origin where its front edge
+/// joins the head. About 62 mm tall and 34 mm wide (adult pinna, Sforza et
+/// al. 2009, Int. J. Pediatr. Otorhinolaryngol. 73:1331), set back 15 deg,
+/// flaring out at the back, with a cupped concha and a rolled rim (helix)
+/// and a lobe narrower than the top.
+pub fn ear() -> MeshData {
+    const AROUND: u32 = 40;
+    const ACROSS: u32 = 10;
+    let (half_h, half_w) = (0.031, 0.017);
+    let tilt = 15f32.to_radians();
+    let point = |theta: f32, v: f32| {
+        // Outline: an ellipse, narrower at the lobe (bottom).
+        let lobe = 1.0 - 0.25 * (-theta.sin()).max(0.0);
+        let (a, b) = (half_w * theta.cos() * lobe, half_h * theta.sin());
+        // Back part (theta near pi) stands off the head most.
+        let back = 0.5 * (1.0 - theta.cos());
+        let flare = 0.002 + 0.013 * back * v;
+        // Cupped concha inside, a rolled helix at the rim.
+        let cup = -0.005 * (1.0 - (v / 0.75).min(1.0)).powi(2) * (1.0 - 0.5 * back);
+        let helix = 0.0035 * (-((v - 0.9) / 0.06).powi(2)).exp();
+        let x = flare + cup + helix * back.max(0.3);
+        let (y, z) = (b * v, a * v - half_w);
+        // Set back: rotate about X (the ear's top leans back).
+        Vec3::new(
+            x,
+            y * tilt.cos() + z * tilt.sin(),
+            -y * tilt.sin() + z * tilt.cos(),
+        )
+    };
+    let mut vertices = Vec::new();
+    for i in 0..=ACROSS {
+        for j in 0..AROUND {
+            let (v, theta) = (i as f32 / ACROSS as f32, j as f32 / AROUND as f32 * TAU);
+            let p = point(theta, v.max(0.02));
+            let du = point(theta + 0.01, v.max(0.02)) - p;
+            let dv = point(theta, (v + 0.01).clamp(0.03, 1.0)) - p;
+            let n = dv.cross(du).normalize_or(Vec3::X);
+            vertices.push(Vertex::new(p, if n.x < 0.0 { -n } else { n }));
+        }
+    }
+    let mut indices = Vec::new();
+    for i in 0..ACROSS {
+        for j in 0..AROUND {
+            let a = i * AROUND + j;
+            let b = i * AROUND + (j + 1) % AROUND;
+            let (c, d) = (a + AROUND, b + AROUND);
+            indices.extend([a, c, b, b, c, d]);
+        }
+    }
+    MeshData { vertices, indices }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -439,6 +439,7 @@ impl Renderer {
         r.upload(MeshKey::Sphere, &geometry::sphere());
         r.upload(MeshKey::Cube, &geometry::cube());
         r.upload(MeshKey::Floor, &geometry::floor());
+        r.upload(MeshKey::Ear, &geometry::ear());
         r
     }
 
@@ -584,6 +585,8 @@ impl Renderer {
         self.dynamic_mesh(MeshKey::Face, &frame.face, || {
             face_triangles.iter().flatten().copied().collect()
         });
+        let lash_count = frame.lashes.len() as u32;
+        self.dynamic_mesh(MeshKey::Lashes, &frame.lashes, || (0..lash_count).collect());
         let looks = Looks::of(&frame.plan);
         self.dynamic_mesh(MeshKey::Body, &frame.body, || {
             looks.indices(MeshKey::Body, AvatarPart::Whole).to_vec()
@@ -684,7 +687,7 @@ impl Renderer {
             pass.set_bind_group(0, &self.globals_bind, &[]);
             for (i, d) in frame.draws.iter().enumerate() {
                 let mesh = match d.mesh {
-                    MeshKey::Face | MeshKey::Body | MeshKey::Avatar => {
+                    MeshKey::Face | MeshKey::Body | MeshKey::Avatar | MeshKey::Lashes => {
                         match self.dynamic.get(&d.mesh) {
                             Some((m, _)) => m,
                             None => continue,
