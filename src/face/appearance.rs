@@ -84,10 +84,11 @@ fn hairline(azimuth_deg: f32) -> f32 {
     h0 + (h1 - h0) * (a - a0) / (a1 - a0)
 }
 
-/// How much of the hair covers the point (0..1).
-fn hair(p: Vec3) -> f32 {
+/// How much of the hair covers the point (0..1); `soft` is the half-width
+/// of the hairline's blend (wider on a coarse mesh).
+fn hair(p: Vec3, soft: f32) -> f32 {
     let azimuth = p.x.atan2(p.z - dims::Z_C).to_degrees();
-    smooth(-2.0 * EDGE, 2.0 * EDGE, p.y - hairline(azimuth))
+    smooth(-soft, soft, p.y - hairline(azimuth))
 }
 
 /// Distance from `p` to the polyline `pts`, and where along it (0..1).
@@ -202,7 +203,7 @@ pub fn paint(mesh: &HeadMesh, style: &FaceStyle) -> Vec<[f32; 4]> {
             c = mix(c, style.lips, lips(p, l, (0.5 * spacing).max(0.0012)));
             c = mix(c, style.brow, brow(p, l, (0.5 * spacing).max(0.002)));
             c = mix(c, style.lashes, lashes(p, &upper, &lower));
-            c = mix(c, style.hair, hair(p));
+            c = mix(c, style.hair, hair(p, (0.8 * spacing).max(2.0 * EDGE)));
             [c[0], c[1], c[2], 1.0]
         })
         .collect()
