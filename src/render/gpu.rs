@@ -61,6 +61,8 @@ struct Globals {
     camera: [f32; 4],
     key_dir: [f32; 4],
     fill_dir: [f32; 4],
+    /// x: the floor's light, the same at every point of it.
+    floor_light: [f32; 4],
 }
 
 #[repr(C)]
@@ -605,17 +607,19 @@ impl Renderer {
         });
 
         let cam = &frame.camera;
+        let (key, fill) = (
+            Vec3::new(-0.5, -0.8, -1.4).normalize(),
+            Vec3::new(0.9, -0.15, -1.0).normalize(),
+        );
+        // The shader's plain lighting (ambient 0.22, key 0.85, fill 0.35)
+        // on the floor's upward normal.
+        let floor_light = 0.22 + 0.85 * (-key.y).max(0.0) + 0.35 * (-fill.y).max(0.0);
         let globals = Globals {
             view_proj: cam.view_proj().to_cols_array_2d(),
             camera: cam.eye.extend(1.0).to_array(),
-            key_dir: Vec3::new(-0.5, -0.8, -1.4)
-                .normalize()
-                .extend(0.0)
-                .to_array(),
-            fill_dir: Vec3::new(0.9, -0.15, -1.0)
-                .normalize()
-                .extend(0.0)
-                .to_array(),
+            key_dir: key.extend(0.0).to_array(),
+            fill_dir: fill.extend(0.0).to_array(),
+            floor_light: [floor_light, 0.0, 0.0, 0.0],
         };
         self.queue
             .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));

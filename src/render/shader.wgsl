@@ -7,6 +7,8 @@ struct Globals {
     camera: vec4<f32>,
     key_dir: vec4<f32>,
     fill_dir: vec4<f32>,
+    // x: the floor's light (ambient + diffuse on an upward normal).
+    floor_light: vec4<f32>,
 };
 
 struct Instance {
@@ -73,6 +75,16 @@ fn eye_colour(local: vec3<f32>) -> vec3<f32> {
 
 @fragment
 fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
+    let material = u32(inst.params.x + 0.5);
+    if (material == 2u) {
+        // The floor: a flat, matte checker lit from above; its light is
+        // the same everywhere, so nothing per pixel but the checker (it
+        // covers most of the picture).
+        let cell = floor(v.world.x * 2.0) + floor(v.world.z * 2.0);
+        let checker = cell - 2.0 * floor(cell * 0.5);
+        let base = mix(vec3<f32>(0.34, 0.34, 0.36), vec3<f32>(0.42, 0.42, 0.44), checker);
+        return vec4<f32>(base * g.floor_light.x, 1.0);
+    }
     let view_dir = normalize(g.camera.xyz - v.world);
     var n = normalize(v.normal);
     // Two-sided: face the normal toward the viewer.
@@ -81,7 +93,6 @@ fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
     }
     var base = inst.color.rgb * v.color.rgb;
     var shine = 0.25;
-    let material = u32(inst.params.x + 0.5);
     let key = normalize(-g.key_dir.xyz);
     let fill = normalize(-g.fill_dir.xyz);
     let h = normalize(key + view_dir);
@@ -104,11 +115,6 @@ fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
     if (material == 1u) {
         base = eye_colour(v.local);
         shine = 0.8;
-    } else if (material == 2u) {
-        let cell = floor(v.world.x * 2.0) + floor(v.world.z * 2.0);
-        let checker = cell - 2.0 * floor(cell * 0.5);
-        base = mix(vec3<f32>(0.34, 0.34, 0.36), vec3<f32>(0.42, 0.42, 0.44), checker);
-        shine = 0.05;
     }
     let diffuse = 0.85 * max(dot(n, key), 0.0) + 0.35 * max(dot(n, fill), 0.0);
     let ambient = 0.22;
