@@ -45,6 +45,21 @@ pub enum MeshKey {
     Ear,
 }
 
+impl MeshKey {
+    /// Whether the mesh is closed and wound counter-clockwise seen from
+    /// outside, so its back faces can be skipped.
+    pub fn is_closed(self) -> bool {
+        matches!(
+            self,
+            MeshKey::Sphere
+                | MeshKey::Cube
+                | MeshKey::Capsule { .. }
+                | MeshKey::Body
+                | MeshKey::Avatar
+        )
+    }
+}
+
 /// How a surface is shaded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Material {

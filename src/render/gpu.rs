@@ -248,6 +248,8 @@ pub struct Renderer {
     queue: wgpu::Queue,
     samples: u32,
     mesh_pipeline: wgpu::RenderPipeline,
+    /// The same with back faces culled, for closed meshes.
+    closed_pipeline: wgpu::RenderPipeline,
     line_pipeline: wgpu::RenderPipeline,
     globals: wgpu::Buffer,
     globals_bind: wgpu::BindGroup,
@@ -359,7 +361,8 @@ impl Renderer {
                         stride: usize,
                         topology: wgpu::PrimitiveTopology,
                         depth_write: bool,
-                        compare: wgpu::CompareFunction| {
+                        compare: wgpu::CompareFunction,
+                        cull_mode: Option<wgpu::Face>| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(vs),
                 layout: Some(&layout),
@@ -375,7 +378,7 @@ impl Renderer {
                 },
                 primitive: wgpu::PrimitiveState {
                     topology,
-                    cull_mode: None,
+                    cull_mode,
                     ..Default::default()
                 },
                 depth_stencil: Some(wgpu::DepthStencilState {
@@ -411,6 +414,20 @@ impl Renderer {
             wgpu::PrimitiveTopology::TriangleList,
             true,
             wgpu::CompareFunction::Less,
+            None,
+        );
+        // Closed meshes wound counter-clockwise seen from outside (the
+        // bodies, spheres, capsules, boxes) never show their inside: their
+        // back faces are skipped, half their triangles.
+        let closed_pipeline = pipeline(
+            "vs_mesh",
+            "fs_mesh",
+            &mesh_attrs,
+            size_of::<Vertex>(),
+            wgpu::PrimitiveTopology::TriangleList,
+            true,
+            wgpu::CompareFunction::Less,
+            Some(wgpu::Face::Back),
         );
         // Overlays are drawn over everything so rays inside the head show.
         let line_pipeline = pipeline(
@@ -421,12 +438,14 @@ impl Renderer {
             wgpu::PrimitiveTopology::LineList,
             false,
             wgpu::CompareFunction::Always,
+            None,
         );
         let mut r = Renderer {
             device: device.clone(),
             queue: queue.clone(),
             samples,
             mesh_pipeline,
+            closed_pipeline,
             line_pipeline,
             globals,
             globals_bind,
@@ -699,6 +718,11 @@ impl Renderer {
                     }
                     key => &self.meshes[&key],
                 };
+                pass.set_pipeline(if d.mesh.is_closed() {
+                    &self.closed_pipeline
+                } else {
+                    &self.mesh_pipeline
+                });
                 pass.set_bind_group(
                     1,
                     &self.instance_bind,
