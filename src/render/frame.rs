@@ -564,13 +564,18 @@ const EAR: [f32; 4] = {
 };
 
 const LASH_LENGTH: [f32; 2] = [0.007, 0.0018];
+/// Thickness of the lid at its margin, m (about 2 mm in adults).
+const LID_THICKNESS: f32 = 0.0018;
+/// The lid margin's moist, pinker skin.
+const LID_MARGIN: [f32; 4] = [0.55, 0.30, 0.27, 1.0];
 const LASH: [f32; 4] = {
     let l = crate::face::appearance::FaceStyle::DEFAULT.lashes;
     [l[0], l[1], l[2], 1.0]
 };
 
-/// Eyelashes: a tapered, curled fringe on each lid rim, rooted on the
-/// deformed rim vertices so it rides every lid movement and blink. The
+/// Eyelashes and lid margins: a tapered, curled fringe on each lid rim
+/// and a narrow ledge behind it (the lid's thickness), rooted on the
+/// deformed rim vertices so they ride every lid movement and blink. The
 /// upper fringe sweeps forward and up, the lower forward and down; both
 /// taper to nothing at the eye corners. A triangle list, face frame.
 fn lashes(rims: &crate::face::mesh::Rims, face: &[Vertex]) -> Vec<Vertex> {
@@ -592,12 +597,34 @@ fn lashes(rims: &crate::face::mesh::Rims, face: &[Vertex]) -> Vec<Vertex> {
             let tip = p + out_dir * l * 0.9 + Vec3::Y * lift * l * 0.35;
             [p, mid, tip]
         };
+        // The lid's margin: a ledge from the rim back toward the eyeball,
+        // the lid's thickness, seen from below (upper lid) or above.
+        let ledge = |i: usize| {
+            let v = &face[rim[i] as usize];
+            let (p, nrm) = (Vec3::from_array(v.pos), Vec3::from_array(v.normal));
+            [p, p - nrm * LID_THICKNESS]
+        };
+        for i in 0..n.saturating_sub(1) {
+            let (a, b) = (ledge(i), ledge(i + 1));
+            let quad = [a[0], b[0], b[1], a[0], b[1], a[1]];
+            let normal = Vec3::Y * -lift;
+            out.extend(quad.map(|p| Vertex::coloured(p, normal, LID_MARGIN)));
+        }
+        // A comb of tapered tufts, one per rim edge (root on the edge, the
+        // curled tip over its middle), not a solid sheet: the lashes read
+        // as hairs from below and the side.
         for i in 0..n.saturating_sub(1) {
             let (a, b) = (strand(i), strand(i + 1));
-            for k in 0..2 {
-                let quad = [a[k], b[k], b[k + 1], a[k], b[k + 1], a[k + 1]];
-                let normal = (b[k] - a[k]).cross(a[k + 1] - a[k]).normalize_or(Vec3::Z);
-                out.extend(quad.map(|p| Vertex::coloured(p, normal, LASH)));
+            let (mid, tip) = ((a[1] + b[1]) / 2.0, (a[2] + b[2]) / 2.0);
+            let half = (b[0] - a[0]) * 0.25;
+            let tuft = [
+                [a[0], b[0], mid + half],
+                [a[0], mid + half, mid - half],
+                [mid - half, mid + half, tip],
+            ];
+            for t in tuft {
+                let normal = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or(Vec3::Z);
+                out.extend(t.map(|p| Vertex::coloured(p, normal, LASH)));
             }
         }
     }
