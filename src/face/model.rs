@@ -151,7 +151,13 @@ impl FaceState {
                 .rig
                 .lid_follow_k(e, 1, pitch, bp.lower_lid_follow_gain as f32);
             let i = ch(MuscleKind::OculiUpperPalpebral);
-            let k = a.k[i]
+            // A relaxation (AU 5) stands for levator's raise.
+            let expressed = if a.k[i] < 0.0 {
+                a.k[i] * bp.levator_gain as f32
+            } else {
+                a.k[i]
+            };
+            let k = expressed
                 + face
                     .rig
                     .lid_follow_k(e, 0, pitch, bp.lid_follow_gain as f32);
@@ -309,6 +315,40 @@ mod tests {
                 assert_eq!(p, q);
             }
         }
+    }
+
+    /// The levator gain scales the lid's raise (a relaxation of the upper
+    /// palpebral orbicularis, AU 5) and nothing else: surprise's mid-lid
+    /// rises 2.5 times as far, anger's lowered lid is unchanged.
+    #[test]
+    fn levator_gain_scales_the_raise_only() {
+        let mid_lid_rise = |gain: f64, emotion: Emotion| {
+            let mut params = FaceParams::default_params();
+            params.blink.levator_gain = gain;
+            params.blink.mean_interval_s = 1e6;
+            let f = Face::new(MeshParams { rows: 48 }, params);
+            let mut s = FaceState::default();
+            s.set_emotion(&f, emotion, 1.0, Speed::Fast, Pattern::III);
+            let mut rng = StdRng::seed_from_u64(1);
+            for _ in 0..2000 {
+                s.step(&f, 0.001, &mut rng);
+            }
+            let mid = f.mesh.rims.upper_lid[0][f.mesh.rims.upper_lid[0].len() / 2] as usize;
+            let mut out = vec![Vec3::ZERO; f.mesh.positions.len()];
+            deform(&f, &s, &mut out);
+            out[mid].y - f.mesh.positions[mid].y
+        };
+        let (one, more) = (
+            mid_lid_rise(1.0, Emotion::Surprise),
+            mid_lid_rise(2.5, Emotion::Surprise),
+        );
+        assert!(one > 0.0005, "surprise raises the lid: {one}");
+        assert!((more / one - 2.5).abs() < 0.05, "{one} -> {more}");
+        let (one, more) = (
+            mid_lid_rise(1.0, Emotion::Anger),
+            mid_lid_rise(2.5, Emotion::Anger),
+        );
+        assert!(one < 0.0 && (one - more).abs() < 1e-6, "{one} vs {more}");
     }
 
     #[test]

@@ -73,6 +73,20 @@ pub struct BlinkParams {
         deserialize_with = "crate::util::check::non_negative"
     )]
     pub lower_lid_follow_gain: f64,
+    /// Upper-lid raise per unit of relaxation of the upper palpebral
+    /// orbicularis (an expression's negative contraction, AU 5). The
+    /// thesis codes AU 5 as that muscle relaxing, so the lid can only
+    /// travel back along the muscle's own closing path, and fear's -0.18
+    /// lifts it half a millimetre; the lid is raised by levator palpebrae,
+    /// which lifts it 12-17 mm from down- to upgaze (Beard 1981, Ptosis,
+    /// 3rd ed.) and a few millimetres above its rest height when the eyes
+    /// are opened wide. Default 2.5 (surprise's -0.48 raises the mid-lid
+    /// 3.6 mm instead of 1.45, fear's 1.4 mm); 1 is the thesis's lid.
+    #[serde(
+        default = "default_levator_gain",
+        deserialize_with = "crate::util::check::positive"
+    )]
+    pub levator_gain: f64,
     /// Blink intervals are stretched by this factor while the VH is
     /// engaged (guarding or attacking): the spontaneous blink rate drops
     /// under visual demand (17 /min at rest against 4.5 /min while
@@ -103,6 +117,10 @@ fn default_arousal_gain() -> f64 {
 
 fn default_engaged_scale() -> f64 {
     3.0
+}
+
+fn default_levator_gain() -> f64 {
+    2.5
 }
 
 fn default_lower_lid_follow_gain() -> f64 {

@@ -99,8 +99,10 @@ impl Model {
     pub fn apply_profile(&mut self, profile: Profile) {
         self.params.apply_profile(profile);
         let b = &self.face.params.blink;
-        let seed_blinks =
-            b.neutral_only && b.engaged_interval_scale == 1.0 && b.arousal_gain == 0.0;
+        let seed_blinks = b.neutral_only
+            && b.engaged_interval_scale == 1.0
+            && b.arousal_gain == 0.0
+            && b.levator_gain == 1.0;
         if profile == Profile::Seed && !seed_blinks {
             // The face is shared: copied once here, not per run (the scene
             // loader applies the profile to the face it shares).
@@ -108,6 +110,7 @@ impl Model {
             blink.neutral_only = true;
             blink.engaged_interval_scale = 1.0;
             blink.arousal_gain = 0.0;
+            blink.levator_gain = 1.0;
         }
     }
 
