@@ -200,7 +200,7 @@ pub fn paint(mesh: &HeadMesh, style: &FaceStyle) -> Vec<[f32; 4]> {
         .zip(spacing)
         .map(|(&p, spacing)| {
             let mut c = mix(style.skin, style.flush, flush(p, l));
-            c = mix(c, style.lips, lips(p, l, (0.5 * spacing).max(0.0012)));
+            c = mix(c, style.lips, lips(p, l, (0.8 * spacing).max(0.002)));
             c = mix(c, style.brow, brow(p, l, (0.5 * spacing).max(0.002)));
             c = mix(c, style.lashes, lashes(p, &upper, &lower));
             c = mix(c, style.hair, hair(p, (0.8 * spacing).max(2.0 * EDGE)));

@@ -503,23 +503,21 @@ pub fn capsule_key(half_height: f32, radius: f32) -> MeshKey {
     }
 }
 
-/// The face deformed by the current face state, with recomputed normals.
 /// The mouth's inside, seen when the lips part: a dark cavity behind the
-/// lips, the upper teeth fixed in the skull and the lower ones carried by
-/// the jaw (they follow the middle of the lower lip's rim), all in the
-/// face frame `face_frame`. Teeth are drawn only when the lips are apart
-/// (closed lips hide them; drawn, they would show through the seam).
+/// lips and the teeth, placed from the middle of the lips' deformed edges
+/// (the lower ones drop with the jaw), all in the face frame `face_frame`.
+/// Teeth are drawn only when the lips are apart (closed lips hide them;
+/// drawn, they would show through the seam).
 fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     let mesh = &sim.model().face.mesh;
     let l = &mesh.landmarks;
-    let mid = mesh.rims.lower_lip[mesh.rims.lower_lip.len() / 2] as usize;
-    let top = mesh.rims.upper_lip[mesh.rims.upper_lip.len() / 2] as usize;
-    let gap = Vec3::from_array(face[top].pos).distance(Vec3::from_array(face[mid].pos));
-    // How far the jaw has dropped: the lower lip's fall (its other moves,
-    // pouting or pressing up, are the lips', not the jaw's).
-    let drop = (face[mid].pos[1] - mesh.positions[mid].y).min(0.0);
-    let jaw = Vec3::new(0.0, drop, 0.0);
-    let lip_z = l.mouth_centre.z;
+    let at = |rim: &[u32]| Vec3::from_array(face[rim[rim.len() / 2] as usize].pos);
+    // The lips' edges at the middle, as deformed: everything behind the
+    // lips is placed from them, so pressed or pouting lips never let a
+    // tooth through.
+    let (upper, lower) = (at(&mesh.rims.upper_lip), at(&mesh.rims.lower_lip));
+    let gap = upper.distance(lower);
+    let back = upper.z.min(lower.z);
     let w = l.mouth_corner.x;
     let ellipsoid = |centre: Vec3, half: Vec3, color| Draw {
         mesh: MeshKey::Sphere,
@@ -527,42 +525,56 @@ fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
         color,
         material: Material::Plain,
     };
-    let y = l.mouth_centre.y;
     let mut parts = vec![ellipsoid(
-        Vec3::new(0.0, y - 0.004, lip_z - 0.040) + jaw * 0.5,
-        Vec3::new(w * 0.85, 0.016 + jaw.length() * 0.3, 0.026),
+        Vec3::new(0.0, (upper.y + lower.y) / 2.0, back - 0.036),
+        Vec3::new(w * 0.85, 0.014 + gap * 0.5, 0.026),
         MOUTH,
     )];
     if gap < TEETH_SHOW_GAP {
         return parts;
     }
+    // Incisors reach a little past each lip's edge (Vig & Brundo 1978,
+    // J. Prosthet. Dent. 39:502: 1-3.5 mm of upper incisor at rest with
+    // the lips apart, less of the lower), set a few millimetres behind.
+    let (half_h, half_d) = (0.005, 0.006);
     parts.extend([
         ellipsoid(
-            Vec3::new(0.0, y + 0.006, lip_z - 0.016),
-            Vec3::new(w * 0.62, 0.0052, 0.012),
+            Vec3::new(
+                0.0,
+                upper.y - TEETH_SHOW[0] + half_h,
+                upper.z - 0.004 - half_d,
+            ),
+            Vec3::new(w * 0.62, half_h, half_d),
             TEETH,
         ),
         ellipsoid(
-            Vec3::new(0.0, y - 0.006, lip_z - 0.018) + jaw * 0.8,
-            Vec3::new(w * 0.55, 0.0045, 0.011),
+            Vec3::new(
+                0.0,
+                lower.y + TEETH_SHOW[1] - half_h,
+                lower.z - 0.005 - half_d,
+            ),
+            Vec3::new(w * 0.55, half_h * 0.9, half_d),
             TEETH,
         ),
     ]);
     parts
 }
 
+/// How far the upper and lower teeth reach past the lips' edges, m.
+const TEETH_SHOW: [f32; 2] = [0.005, 0.0015];
+
 /// Lips further apart than this show the teeth, m.
 const TEETH_SHOW_GAP: f32 = 0.003;
 
-/// Lashes, m: upper and lower length at mid-lid (Thibaut et al. 2010,
-/// Br. J. Dermatol. 163:1023: upper 8-12 mm, lower 6-8 mm; shorter here,
-/// seen curled).
 /// Ears are a little redder than the face.
 const EAR: [f32; 4] = {
     let s = crate::face::appearance::FaceStyle::DEFAULT.skin;
     [s[0] * 1.04, s[1] * 0.95, s[2] * 0.95, 1.0]
 };
 
+/// Lashes, m: upper and lower length at mid-lid (Thibaut et al. 2010,
+/// Br. J. Dermatol. 163:1023: upper 8-12 mm, lower 6-8 mm; shorter here,
+/// seen curled).
 const LASH_LENGTH: [f32; 2] = [0.007, 0.0018];
 /// Thickness of the lid at its margin, m (about 2 mm in adults).
 const LID_THICKNESS: f32 = 0.0018;
@@ -631,6 +643,7 @@ fn lashes(rims: &crate::face::mesh::Rims, face: &[Vertex]) -> Vec<Vertex> {
     out
 }
 
+/// The face deformed by the current face state, with recomputed normals.
 fn face_vertices(sim: &Sim) -> Vec<Vertex> {
     let mesh = &sim.model().face.mesh;
     let mut pos = vec![Vec3::ZERO; mesh.positions.len()];
