@@ -159,39 +159,26 @@ impl World {
                 (JointKind::Weld, Some(p)) => Some(p),
                 _ => None,
             };
-            if let Some(p) = welded {
-                let (h, offset) = (
+            let (h, offset) = match welded {
+                Some(p) => (
                     handles[p],
                     bodies[p].offset + s.centre - plan.segments[p].centre,
-                );
-                let cb = collider_for(s.shape, s.axis_to, offset)
-                    .mass(s.mass)
-                    .collision_groups(vh_groups)
+                ),
+                None => {
+                    // The root stands on a stand that slides (kinematically)
+                    // when the VH steps into a punch.
+                    let rb = if s.parent.is_none() {
+                        RigidBodyBuilder::kinematic_position_based()
+                    } else {
+                        RigidBodyBuilder::dynamic()
+                    }
+                    .translation(s.centre)
+                    .can_sleep(false)
                     .user_data(i as u128);
-                let c = phys.insert_collider(cb, Some(h));
-                handles.push(h);
-                bodies.push(BodyInfo {
-                    name: s.name.to_string(),
-                    handle: h,
-                    collider: c,
-                    owner: Owner::Vh(i),
-                    kinematic: false,
-                    offset,
-                });
-                continue;
-            }
-            // The root stands on a stand that slides (kinematically) when
-            // the VH steps into a punch.
-            let rb = if s.parent.is_none() {
-                RigidBodyBuilder::kinematic_position_based()
-            } else {
-                RigidBodyBuilder::dynamic()
-            }
-            .translation(s.centre)
-            .can_sleep(false)
-            .user_data(i as u128);
-            let h = phys.insert_body(rb);
-            let mut cb = collider_for(s.shape, s.axis_to, Vec3::ZERO).collision_groups(vh_groups);
+                    (phys.insert_body(rb), Vec3::ZERO)
+                }
+            };
+            let mut cb = collider_for(s.shape, s.axis_to, offset).collision_groups(vh_groups);
             if s.mass > 0.0 {
                 cb = cb.mass(s.mass);
             }
@@ -207,7 +194,7 @@ impl World {
                 collider: c,
                 owner: Owner::Vh(i),
                 kinematic: false,
-                offset: Vec3::ZERO,
+                offset,
             });
         }
         let mut anchor_parent = vec![Vec3::ZERO; plan.segments.len()];

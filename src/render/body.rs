@@ -25,6 +25,7 @@ use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
 
 use glam::{Mat4, Quat, Vec3, Vec4};
 
+use super::geometry::Vertex;
 use crate::physics::body::{BodyPlan, Shape, arm_ik, seg};
 
 /// A skinning bone; each glove rides its forearm.
@@ -91,17 +92,29 @@ pub struct BodyStyle {
     pub cuff: [f32; 4],
 }
 
-impl Default for BodyStyle {
-    /// The VH's colours: skin, a navy vest, red gloves, white cuff stripes.
-    fn default() -> Self {
-        BodyStyle {
-            skin: [0.78, 0.52, 0.40, 1.0],
-            shirt: [0.16, 0.22, 0.40, 1.0],
-            glove: [0.70, 0.06, 0.05, 1.0],
-            cuff: [0.92, 0.92, 0.88, 1.0],
-        }
-    }
+impl BodyStyle {
+    /// The VH: the face's skin, a navy vest, red gloves, white cuff stripes.
+    pub const VH: BodyStyle = BodyStyle {
+        skin: SKIN,
+        shirt: [0.16, 0.22, 0.40, 1.0],
+        glove: [0.70, 0.06, 0.05, 1.0],
+        cuff: CUFF,
+    };
+    /// You: the same skin, a grey vest, blue gloves.
+    pub const YOU: BodyStyle = BodyStyle {
+        skin: SKIN,
+        shirt: [0.30, 0.31, 0.33, 1.0],
+        glove: [0.08, 0.22, 0.75, 1.0],
+        cuff: CUFF,
+    };
 }
+
+/// Skin, as the face's ([`crate::face::appearance::FaceStyle`]).
+pub const SKIN: [f32; 4] = {
+    let s = crate::face::appearance::FaceStyle::DEFAULT.skin;
+    [s[0], s[1], s[2], 1.0]
+};
+const CUFF: [f32; 4] = [0.92, 0.92, 0.88, 1.0];
 
 /// A rest-pose vertex with its skinning weights.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -116,18 +129,6 @@ pub struct SkinVertex {
     pub bones: [u8; 4],
     /// Weights, non-negative, summing to 1.
     pub weights: [f32; 4],
-}
-
-/// A posed vertex, ready to draw (world frame).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct SkinnedVertex {
-    /// Position.
-    pub pos: [f32; 3],
-    /// Unit normal.
-    pub normal: [f32; 3],
-    /// Linear RGBA colour.
-    pub color: [f32; 4],
 }
 
 /// Which part a vertex belongs to.
@@ -623,8 +624,9 @@ impl BodyMesh {
     }
 
     /// Linear blend skinning: `out` is cleared and filled with one posed
-    /// vertex per rest vertex (allocates only while `out` grows).
-    pub fn skin(&self, pose: &Pose, out: &mut Vec<SkinnedVertex>) {
+    /// vertex per rest vertex, world frame (allocates only while `out`
+    /// grows).
+    pub fn skin(&self, pose: &Pose, out: &mut Vec<Vertex>) {
         out.clear();
         out.extend(self.vertices.iter().map(|v| {
             let (p, n) = (Vec3::from_array(v.pos), Vec3::from_array(v.normal));
@@ -636,11 +638,7 @@ impl BodyMesh {
                     sn += w * m.transform_vector3(n);
                 }
             }
-            SkinnedVertex {
-                pos: sp.to_array(),
-                normal: sn.normalize_or(n).to_array(),
-                color: v.color,
-            }
+            Vertex::coloured(sp, sn.normalize_or(n), v.color)
         }));
     }
 }
@@ -694,7 +692,7 @@ mod tests {
 
     fn mesh() -> (BodyPlan, BodyMesh) {
         let plan = BodyPlan::default();
-        let m = BodyMesh::new(&plan, &BodyStyle::default());
+        let m = BodyMesh::new(&plan, &BodyStyle::VH);
         (plan, m)
     }
 
@@ -788,11 +786,7 @@ mod tests {
         let (plan, m) = mesh();
         let n = m.vertices.len();
         assert!((3000..=8000).contains(&n), "{n} vertices");
-        assert_eq!(
-            m,
-            BodyMesh::new(&plan, &BodyStyle::default()),
-            "deterministic"
-        );
+        assert_eq!(m, BodyMesh::new(&plan, &BodyStyle::VH), "deterministic");
         let p = posed(&m, &REST_POSE);
         for list in [&m.indices, &m.arm_indices] {
             assert!(!list.is_empty() && list.len() % 3 == 0);

@@ -185,4 +185,27 @@ mod tests {
         let centre = cam.project(cam.target, size).unwrap();
         assert!(centre.distance(size / 2.0) < 1e-3);
     }
+
+    #[test]
+    fn orbit_views_parse_and_bad_ones_are_refused() {
+        assert_eq!(
+            View::parse("orbit:0.5, 0.1,0.8"),
+            Some(View::Orbit {
+                yaw: 0.5,
+                pitch: 0.1,
+                distance: 0.8
+            })
+        );
+        for bad in [
+            "orbit:0.5,0.1",
+            "orbit:0.5,0.1,0.8,1",
+            "orbit:NaN,0.1,0.8",
+            "orbit:0.5,0.1,0.1",
+            "orbit:0.5,0.1,11",
+            "orbit:a,b,c",
+            "sideways",
+        ] {
+            assert_eq!(View::parse(bad), None, "{bad}");
+        }
+    }
 }

@@ -11,7 +11,7 @@ use crate::physics::world::{Owner, opp};
 use crate::sim::Sim;
 use crate::util::math::{dir_from_yaw_pitch, yaw_pitch_of};
 
-use super::body::{BodyMesh, BodyStyle, Pose, avatar_pose, vh_pose};
+use super::body::{BodyMesh, BodyStyle, Pose, SKIN, avatar_pose, vh_pose};
 use super::camera::{Camera, View};
 use super::geometry::Vertex;
 
@@ -159,6 +159,7 @@ pub enum AvatarPart {
 
 /// The bodies' skinned meshes, built once from the body plan (a pure
 /// function of it): the VH's and yours, which differ in colour.
+#[derive(Clone)]
 pub struct Looks {
     /// The VH's body.
     pub vh: BodyMesh,
@@ -170,30 +171,23 @@ impl Looks {
     /// The meshes for `plan`: built on first use for the standard plan and
     /// kept; any other plan builds its own (a few milliseconds).
     pub fn of(plan: &BodyPlan) -> std::borrow::Cow<'static, Looks> {
-        static STANDARD: std::sync::OnceLock<Looks> = std::sync::OnceLock::new();
-        if *plan == BodyPlan::default() {
-            std::borrow::Cow::Borrowed(STANDARD.get_or_init(|| Looks::build(plan)))
+        static STANDARD: std::sync::OnceLock<(BodyPlan, Looks)> = std::sync::OnceLock::new();
+        let (standard, looks) = STANDARD.get_or_init(|| {
+            let plan = BodyPlan::default();
+            let looks = Looks::build(&plan);
+            (plan, looks)
+        });
+        if plan == standard {
+            std::borrow::Cow::Borrowed(looks)
         } else {
             std::borrow::Cow::Owned(Looks::build(plan))
         }
     }
 
     fn build(plan: &BodyPlan) -> Looks {
-        let vh = BodyStyle {
-            skin: SKIN,
-            shirt: SHIRT,
-            glove: VH_GLOVE,
-            cuff: CUFF,
-        };
-        let you = BodyStyle {
-            skin: SKIN,
-            shirt: YOUR_SHIRT,
-            glove: YOUR_GLOVE,
-            cuff: CUFF,
-        };
         Looks {
-            vh: BodyMesh::new(plan, &vh),
-            you: BodyMesh::new(plan, &you),
+            vh: BodyMesh::new(plan, &BodyStyle::VH),
+            you: BodyMesh::new(plan, &BodyStyle::YOU),
         }
     }
 
@@ -207,39 +201,15 @@ impl Looks {
     }
 }
 
-impl Clone for Looks {
-    fn clone(&self) -> Self {
-        Looks {
-            vh: self.vh.clone(),
-            you: self.you.clone(),
-        }
-    }
-}
-
 fn posed(mesh: &BodyMesh, pose: &Pose) -> Vec<Vertex> {
     let mut out = Vec::new();
     mesh.skin(pose, &mut out);
-    out.into_iter()
-        .map(|v| Vertex {
-            pos: v.pos,
-            normal: v.normal,
-            color: v.color,
-        })
-        .collect()
+    out
 }
 
-const SKIN: [f32; 4] = {
-    let s = crate::face::appearance::FaceStyle::DEFAULT.skin;
-    [s[0], s[1], s[2], 1.0]
-};
 /// Inside of the mouth, and teeth.
 const MOUTH: [f32; 4] = [0.05, 0.012, 0.012, 1.0];
 const TEETH: [f32; 4] = [0.80, 0.78, 0.70, 1.0];
-const SHIRT: [f32; 4] = [0.16, 0.22, 0.40, 1.0];
-const VH_GLOVE: [f32; 4] = [0.70, 0.06, 0.05, 1.0];
-const YOUR_GLOVE: [f32; 4] = [0.08, 0.22, 0.75, 1.0];
-const YOUR_SHIRT: [f32; 4] = [0.30, 0.31, 0.33, 1.0];
-const CUFF: [f32; 4] = [0.92, 0.92, 0.88, 1.0];
 const HAIR: [f32; 4] = {
     let h = crate::face::appearance::FaceStyle::DEFAULT.hair;
     [h[0], h[1], h[2], 1.0]
@@ -567,16 +537,14 @@ const TEETH_SHOW: [f32; 2] = [0.005, 0.0015];
 const TEETH_SHOW_GAP: f32 = 0.003;
 
 /// Ears are a little redder than the face.
-const EAR: [f32; 4] = {
-    let s = crate::face::appearance::FaceStyle::DEFAULT.skin;
-    [s[0] * 1.04, s[1] * 0.95, s[2] * 0.95, 1.0]
-};
+const EAR: [f32; 4] = [SKIN[0] * 1.04, SKIN[1] * 0.95, SKIN[2] * 0.95, 1.0];
 
 /// Lashes, m: upper and lower length at mid-lid (Thibaut et al. 2010,
 /// Br. J. Dermatol. 163:1023: upper 8-12 mm, lower 6-8 mm; shorter here,
 /// seen curled).
 const LASH_LENGTH: [f32; 2] = [0.007, 0.0018];
-/// Thickness of the lid at its margin, m (about 2 mm in adults).
+/// Thickness of the lid at its margin, m (our choice: a thin ledge that
+/// reads as the lid's edge).
 const LID_THICKNESS: f32 = 0.0018;
 /// The lid margin's moist, pinker skin.
 const LID_MARGIN: [f32; 4] = [0.55, 0.30, 0.27, 1.0];

@@ -406,29 +406,23 @@ impl Renderer {
                 cache: None,
             })
         };
-        let mesh_pipeline = pipeline(
-            "vs_mesh",
-            "fs_mesh",
-            &mesh_attrs,
-            size_of::<Vertex>(),
-            wgpu::PrimitiveTopology::TriangleList,
-            true,
-            wgpu::CompareFunction::Less,
-            None,
-        );
+        let mesh = |cull_mode| {
+            pipeline(
+                "vs_mesh",
+                "fs_mesh",
+                &mesh_attrs,
+                size_of::<Vertex>(),
+                wgpu::PrimitiveTopology::TriangleList,
+                true,
+                wgpu::CompareFunction::Less,
+                cull_mode,
+            )
+        };
+        let mesh_pipeline = mesh(None);
         // Closed meshes wound counter-clockwise seen from outside (the
         // bodies, spheres, capsules, boxes) never show their inside: their
         // back faces are skipped, half their triangles.
-        let closed_pipeline = pipeline(
-            "vs_mesh",
-            "fs_mesh",
-            &mesh_attrs,
-            size_of::<Vertex>(),
-            wgpu::PrimitiveTopology::TriangleList,
-            true,
-            wgpu::CompareFunction::Less,
-            Some(wgpu::Face::Back),
-        );
+        let closed_pipeline = mesh(Some(wgpu::Face::Back));
         // Overlays are drawn over everything so rays inside the head show.
         let line_pipeline = pipeline(
             "vs_line",
@@ -557,22 +551,18 @@ impl Renderer {
     }
 
     /// Upload this frame's vertices of a dynamic mesh; its buffers are
-    /// rebuilt only when the vertex or index count changes.
-    fn dynamic_mesh(
-        &mut self,
-        key: MeshKey,
-        vertices: &[Vertex],
-        indices: impl FnOnce() -> Vec<u32>,
-    ) {
+    /// rebuilt (with `indices`) only when the vertex or index count
+    /// changes.
+    fn dynamic_mesh(&mut self, key: MeshKey, vertices: &[Vertex], indices: &[u32]) {
         match self.dynamic.get(&key) {
-            Some((m, n)) if *n == vertices.len() => {
+            Some((m, n)) if *n == vertices.len() && m.count as usize == indices.len() => {
                 self.queue
                     .write_buffer(&m.vertices, 0, bytemuck::cast_slice(vertices));
             }
             _ => {
                 let data = MeshData {
                     vertices: vertices.to_vec(),
-                    indices: indices(),
+                    indices: indices.to_vec(),
                 };
                 let mesh = self.make_mesh(&data, wgpu::BufferUsages::COPY_DST);
                 self.dynamic.insert(key, (mesh, vertices.len()));
@@ -596,34 +586,20 @@ impl Renderer {
                 self.upload(d.mesh, &data);
             }
         }
-        let face_stale = self
-            .dynamic
-            .get(&MeshKey::Face)
-            .is_some_and(|(m, _)| m.count as usize != face_triangles.len() * 3);
-        if face_stale {
-            self.dynamic.remove(&MeshKey::Face);
-        }
-        self.dynamic_mesh(MeshKey::Face, &frame.face, || {
-            face_triangles.iter().flatten().copied().collect()
-        });
-        let lash_count = frame.lashes.len() as u32;
-        self.dynamic_mesh(MeshKey::Lashes, &frame.lashes, || (0..lash_count).collect());
+        self.dynamic_mesh(MeshKey::Face, &frame.face, face_triangles.as_flattened());
+        let lashes: Vec<u32> = (0..frame.lashes.len() as u32).collect();
+        self.dynamic_mesh(MeshKey::Lashes, &frame.lashes, &lashes);
         let looks = Looks::of(&frame.plan);
-        self.dynamic_mesh(MeshKey::Body, &frame.body, || {
-            looks.indices(MeshKey::Body, AvatarPart::Whole).to_vec()
-        });
-        let part = frame.avatar_indices;
-        let avatar_count = looks.indices(MeshKey::Avatar, part).len() as u32;
-        if self
-            .dynamic
-            .get(&MeshKey::Avatar)
-            .is_some_and(|(m, _)| m.count != avatar_count)
-        {
-            self.dynamic.remove(&MeshKey::Avatar);
-        }
-        self.dynamic_mesh(MeshKey::Avatar, &frame.avatar, || {
-            looks.indices(MeshKey::Avatar, part).to_vec()
-        });
+        self.dynamic_mesh(
+            MeshKey::Body,
+            &frame.body,
+            looks.indices(MeshKey::Body, AvatarPart::Whole),
+        );
+        self.dynamic_mesh(
+            MeshKey::Avatar,
+            &frame.avatar,
+            looks.indices(MeshKey::Avatar, frame.avatar_indices),
+        );
 
         let cam = &frame.camera;
         let (key, fill) = (

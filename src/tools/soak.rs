@@ -208,9 +208,9 @@ fn rss_kib() -> u64 {
         .map_or(0, |pages| pages * 4)
 }
 
-/// Check one sample's invariants; returns how far an angle strayed past
-/// its range (deg) and the violations.
-fn check(s: &Sample, sim: &Sim, failures: &mut Vec<String>) -> f64 {
+/// Check one sample's invariants, recording violations; returns how far
+/// an angle strayed past its range (deg) and how wide a joint opened (mm).
+fn check(s: &Sample, sim: &Sim, failures: &mut Vec<String>) -> (f64, f64) {
     let mut fail = |m: String| {
         if failures.len() < 20 {
             failures.push(format!("t = {:.3} s: {m}", s.t));
@@ -245,7 +245,7 @@ fn check(s: &Sample, sim: &Sim, failures: &mut Vec<String>) -> f64 {
     if gap_mm > MAX_JOINT_GAP_MM {
         fail(format!("a joint opened {gap_mm:.1} mm"));
     }
-    worst
+    (worst, gap_mm)
 }
 
 /// A joint opening wider than this is a solver failure, mm: a segment
@@ -272,13 +272,10 @@ pub fn soak(minutes: f64, seed: u64, mut progress: impl FnMut(f64) -> bool) -> S
     for i in 0..ticks {
         bot.step(&mut sim);
         let s = sim.step().clone();
-        r.worst_limit_excess_deg = r
-            .worst_limit_excess_deg
-            .max(check(&s, &sim, &mut r.failures));
+        let (excess, gap_mm) = check(&s, &sim, &mut r.failures);
+        r.worst_limit_excess_deg = r.worst_limit_excess_deg.max(excess);
+        r.worst_joint_gap_mm = r.worst_joint_gap_mm.max(gap_mm);
         r.head_hit_ticks += u64::from(s.head_hit);
-        r.worst_joint_gap_mm = r
-            .worst_joint_gap_mm
-            .max(f64::from(sim.world.joint_gap()) * 1000.0);
         if i % 1000 == 0 {
             if !progress(i as f64 / ticks as f64) {
                 break;
