@@ -22,6 +22,7 @@ pub mod rig;
 pub mod script;
 pub mod tables;
 pub mod timing;
+pub mod wrinkle;
 
 pub use model::{Face, FaceState, deform};
 pub use params::FaceError;

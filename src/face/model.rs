@@ -22,6 +22,8 @@ pub struct Face {
     /// Each rest vertex's colour (hair, brows, lips, lash line, skin),
     /// linear RGBA ([`super::appearance::paint`]).
     pub colours: Vec<[f32; 4]>,
+    /// Rest frames for measuring the skin's compression (wrinkles).
+    pub wrinkle_basis: super::wrinkle::WrinkleBasis,
 }
 
 impl Face {
@@ -35,11 +37,13 @@ impl Face {
     pub fn from_mesh(mesh: HeadMesh, params: FaceParams) -> Face {
         let rig = Rig::build(&mesh, &params);
         let colours = super::appearance::paint(&mesh, &super::appearance::FaceStyle::default());
+        let wrinkle_basis = super::wrinkle::WrinkleBasis::new(&mesh, &params.skin);
         Face {
             mesh,
             params,
             rig,
             colours,
+            wrinkle_basis,
         }
     }
 }

@@ -93,11 +93,15 @@ impl LinearMuscle {
 pub enum SphincterPart {
     /// The whole ellipse.
     Full,
-    /// Only points with local `y >= 0` (above the centre).
+    /// Only points with local `y > 0` (above the centre), fading in over
+    /// [`HALF_FEATHER`] `ly` from the centre line.
     Upper,
-    /// Only points with local `y <= 0` (below the centre).
+    /// Only points with local `y < 0` (below the centre), likewise.
     Lower,
 }
+
+/// Width of a half sphincter's feathered edge, as a fraction of `ly`.
+pub const HALF_FEATHER: f32 = 0.3;
 
 /// A Waters sphincter: ellipse with centre `centre`, unit in-plane axes
 /// `axis_x`, `axis_y` (orthogonal) and semi-axes `lx`, `ly`.
@@ -131,10 +135,16 @@ impl Sphincter {
     pub fn displacement(&self, p: Vec3, k: f32) -> Vec3 {
         let op = p - self.centre;
         let (px, py) = (op.dot(self.axis_x), op.dot(self.axis_y));
-        match self.part {
-            SphincterPart::Upper if py < 0.0 => return Vec3::ZERO,
-            SphincterPart::Lower if py > 0.0 => return Vec3::ZERO,
-            _ => {}
+        // A half ellipse's straight edge is feathered over HALF_FEATHER ly:
+        // cut hard, it would shear the skin along a line (a crease the
+        // wrinkle law would draw across the nose's root).
+        let side = match self.part {
+            SphincterPart::Full => 1.0,
+            SphincterPart::Upper => py / (HALF_FEATHER * self.ly),
+            SphincterPart::Lower => -py / (HALF_FEATHER * self.ly),
+        };
+        if side <= 0.0 {
+            return Vec3::ZERO;
         }
         let rho = self.rho(p);
         if rho >= 2.0 {
@@ -142,7 +152,7 @@ impl Sphincter {
         }
         let f = 1.0 - 0.5 * rho; // (F6)
         let op_plane = px * self.axis_x + py * self.axis_y;
-        -2.0 * k * f * op_plane // (F6)
+        -2.0 * k * f * side.min(1.0) * op_plane // (F6)
     }
 }
 
@@ -446,6 +456,23 @@ mod tests {
         assert_eq!(
             s.displacement(s.centre + Vec3::new(0.0, -0.01, 0.0), 0.5),
             Vec3::ZERO
+        );
+        // The edge is continuous: nothing on the centre line, half of (F6)
+        // halfway through the feather, all of it past the feather.
+        let full = Sphincter {
+            part: SphincterPart::Full,
+            ..s
+        };
+        let at = |y: f32| s.centre + Vec3::new(0.012, y, 0.0);
+        assert!(s.displacement(at(1e-7), 0.5).length() < 1e-6);
+        let mid = 0.5 * HALF_FEATHER * s.ly;
+        assert!(
+            (s.displacement(at(mid), 0.5) - 0.5 * full.displacement(at(mid), 0.5)).length() < 1e-7
+        );
+        let past = 1.2 * HALF_FEATHER * s.ly;
+        assert_eq!(
+            s.displacement(at(past), 0.5),
+            full.displacement(at(past), 0.5)
         );
     }
 

@@ -161,6 +161,9 @@ pub struct FaceParams {
     /// Table 5.10 group 2 where it differs.
     #[serde(default)]
     pub offset_group2: BTreeMap<Expression, DurationBounds>,
+    /// How the skin wrinkles when compressed (defaults if absent).
+    #[serde(default)]
+    pub skin: super::wrinkle::SkinParams,
 }
 
 impl FaceParams {

@@ -474,20 +474,23 @@ pub fn capsule_key(half_height: f32, radius: f32) -> MeshKey {
 }
 
 /// The mouth's inside, seen when the lips part: a dark cavity behind the
-/// lips and the teeth, placed from the middle of the lips' deformed edges
-/// (the lower ones drop with the jaw), all in the face frame `face_frame`.
-/// Teeth are drawn only when the lips are apart (closed lips hide them;
-/// drawn, they would show through the seam).
+/// lips, placed from the middle of the lips' deformed edges, and the teeth,
+/// fixed to the bones: the upper incisors to the skull, the lower ones to
+/// the jaw, turning with it (F7), all in the face frame `face_frame`. The
+/// lips move over the teeth: a raised upper lip bares the upper teeth, a
+/// lowered lower lip the lower ones. Teeth are drawn only when the lips
+/// are apart (closed lips hide them; drawn, they would show through the
+/// seam).
 fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
-    let mesh = &sim.model().face.mesh;
-    let l = &mesh.landmarks;
-    let at = |rim: &[u32]| Vec3::from_array(face[rim[rim.len() / 2] as usize].pos);
-    // The lips' edges at the middle, as deformed: everything behind the
-    // lips is placed from them, so pressed or pouting lips never let a
-    // tooth through.
-    let (upper, lower) = (at(&mesh.rims.upper_lip), at(&mesh.rims.lower_lip));
+    let model = &sim.model().face;
+    let (mesh, l) = (&model.mesh, &model.mesh.landmarks);
+    let mid = |rim: &[u32]| rim[rim.len() / 2] as usize;
+    let (ui, li) = (mid(&mesh.rims.upper_lip), mid(&mesh.rims.lower_lip));
+    let (upper, lower) = (
+        Vec3::from_array(face[ui].pos),
+        Vec3::from_array(face[li].pos),
+    );
     let gap = upper.distance(lower);
-    let back = upper.z.min(lower.z);
     let w = l.mouth_corner.x;
     let ellipsoid = |centre: Vec3, half: Vec3, color| Draw {
         mesh: MeshKey::Sphere,
@@ -496,33 +499,44 @@ fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
         material: Material::Plain,
     };
     let mut parts = vec![ellipsoid(
-        Vec3::new(0.0, (upper.y + lower.y) / 2.0, back - 0.036),
+        Vec3::new(0.0, (upper.y + lower.y) / 2.0, upper.z.min(lower.z) - 0.036),
         Vec3::new(w * 0.85, 0.014 + gap * 0.5, 0.026),
         MOUTH,
     )];
     if gap < TEETH_SHOW_GAP {
         return parts;
     }
-    // Incisors reach a little past each lip's edge (Vig & Brundo 1978,
-    // J. Prosthet. Dent. 39:502: 1-3.5 mm of upper incisor at rest with
-    // the lips apart, less of the lower), set a few millimetres behind.
-    let (half_h, half_d) = (0.005, 0.006);
+    // Incisal edges at rest: the upper one a little below the upper lip's
+    // rest edge and behind it; the lower one overlapped by the upper
+    // (overbite) and behind it (overjet).
+    let rest_lip = mesh.positions[ui];
+    let upper_edge = Vec3::new(0.0, rest_lip.y - INCISOR_SHOW, rest_lip.z - INCISOR_DEPTH);
+    let lower_rest = upper_edge + Vec3::new(0.0, OVERBITE, -OVERJET);
+    let jaw = &model.rig.jaw;
+    let theta = sim.face_state.activation.jaw_deg.to_radians();
+    let lower_edge = lower_rest + crate::face::muscle::jaw_rotation(lower_rest - jaw.pivot, theta);
+    let (half_h, half_d) = (0.005, 0.005);
+    // Lips bunched in front of the teeth (a tightened mouth pulls the skin
+    // above and below the lips over them) must still cover them: the teeth
+    // go back behind the nearest skin in front of them, if it is nearer
+    // than their place on the bones (the surface has no lip thickness).
+    let half_w = w * 0.62;
+    let (y0, y1) = (lower_edge.y - 2.0 * half_h, upper_edge.y + 2.0 * half_h);
+    let skin = face
+        .iter()
+        .map(|v| Vec3::from_array(v.pos))
+        .filter(|p| p.x.abs() < half_w && (y0..y1).contains(&p.y))
+        .filter(|p| p.z > rest_lip.z - LIP_REACH)
+        .fold(f32::INFINITY, |z, p| z.min(p.z));
+    let push = (upper_edge.z - (skin - 0.001)).max(0.0);
     parts.extend([
         ellipsoid(
-            Vec3::new(
-                0.0,
-                upper.y - TEETH_SHOW[0] + half_h,
-                upper.z - 0.004 - half_d,
-            ),
-            Vec3::new(w * 0.62, half_h, half_d),
+            upper_edge + Vec3::new(0.0, half_h, -half_d - push),
+            Vec3::new(half_w, half_h, half_d),
             TEETH,
         ),
         ellipsoid(
-            Vec3::new(
-                0.0,
-                lower.y + TEETH_SHOW[1] - half_h,
-                lower.z - 0.005 - half_d,
-            ),
+            lower_edge + Vec3::new(0.0, -0.9 * half_h, -half_d - push),
             Vec3::new(w * 0.55, half_h * 0.9, half_d),
             TEETH,
         ),
@@ -530,8 +544,23 @@ fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     parts
 }
 
-/// How far the upper and lower teeth reach past the lips' edges, m.
-const TEETH_SHOW: [f32; 2] = [0.005, 0.0015];
+/// How far the upper incisors reach below the upper lip's rest edge, m:
+/// about 2 mm in young men with the lips apart at rest (Vig & Brundo 1978,
+/// J. Prosthet. Dent. 39:502: 1-3.5 mm, more in women and the young).
+const INCISOR_SHOW: f32 = 0.002;
+
+/// How far the upper incisors' front sits behind the upper lip's edge, m
+/// (the lip's thickness at its edge; our choice).
+const INCISOR_DEPTH: f32 = 0.004;
+
+/// Vertical overlap and horizontal step of the lower incisors behind the
+/// upper ones in a closed bite, m: the orthodontic norm of about 2 mm each.
+const OVERBITE: f32 = 0.002;
+const OVERJET: f32 = 0.0025;
+
+/// Skin up to this far behind the upper lip's rest edge can lie in front
+/// of the teeth (the lips and the skin around them), m.
+const LIP_REACH: f32 = 0.015;
 
 /// Lips further apart than this show the teeth, m.
 const TEETH_SHOW_GAP: f32 = 0.003;
@@ -611,16 +640,30 @@ fn lashes(rims: &crate::face::mesh::Rims, face: &[Vertex]) -> Vec<Vertex> {
     out
 }
 
-/// The face deformed by the current face state, with recomputed normals.
+/// The face deformed by the current face state, with recomputed normals
+/// and the wrinkles of its compressed skin.
 fn face_vertices(sim: &Sim) -> Vec<Vertex> {
-    let mesh = &sim.model().face.mesh;
+    let face = &sim.model().face;
+    let mesh = &face.mesh;
     let mut pos = vec![Vec3::ZERO; mesh.positions.len()];
-    crate::face::deform(&sim.model().face, &sim.face_state, &mut pos);
+    crate::face::deform(face, &sim.face_state, &mut pos);
     let normals = compute_normals(&pos, &mesh.triangles);
+    let mut wrinkles = Vec::new();
+    crate::face::wrinkle::measure(
+        mesh,
+        &face.wrinkle_basis,
+        &face.params.skin,
+        &pos,
+        &mut wrinkles,
+    );
     pos.iter()
         .zip(&normals)
-        .zip(&sim.model().face.colours)
-        .map(|((p, n), c)| Vertex::coloured(*p, *n, *c))
+        .zip(&face.colours)
+        .zip(&wrinkles)
+        .map(|(((p, n), c), w)| Vertex {
+            wrinkle: *w,
+            ..Vertex::coloured(*p, *n, *c)
+        })
         .collect()
 }
 

@@ -5,7 +5,8 @@ use std::f32::consts::{PI, TAU};
 
 use glam::Vec3;
 
-/// One mesh vertex: position, unit normal (local frame) and colour.
+/// One mesh vertex: position, unit normal (local frame), colour and skin
+/// wrinkle data.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct Vertex {
@@ -15,6 +16,9 @@ pub struct Vertex {
     pub normal: [f32; 3],
     /// Linear RGBA, multiplied by the instance's colour.
     pub color: [f32; 4],
+    /// Skin wrinkles: the lines' slopes and phases along the face's axes
+    /// ([`crate::face::wrinkle::WrinkleVertex`]); zero elsewhere.
+    pub wrinkle: [f32; 4],
 }
 
 impl Vertex {
@@ -29,6 +33,7 @@ impl Vertex {
             pos: pos.to_array(),
             normal: normal.to_array(),
             color,
+            wrinkle: [0.0; 4],
         }
     }
 }

@@ -29,6 +29,8 @@ struct VOut {
     @location(1) normal: vec3<f32>,
     @location(2) local: vec3<f32>,
     @location(3) color: vec4<f32>,
+    // Skin wrinkles: slopes across x and y, phases along x and y.
+    @location(4) wrinkle: vec4<f32>,
 };
 
 @vertex
@@ -36,9 +38,11 @@ fn vs_mesh(
     @location(0) pos: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) color: vec4<f32>,
+    @location(3) wrinkle: vec4<f32>,
 ) -> VOut {
     var o: VOut;
     o.color = color;
+    o.wrinkle = wrinkle;
     let w = inst.model * vec4<f32>(pos, 1.0);
     o.clip = g.view_proj * w;
     o.world = w.xyz;
@@ -97,6 +101,35 @@ fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
     let fill = normalize(-g.fill_dir.xyz);
     let h = normalize(key + view_dir);
     if (material == 3u) {
+        // Expression wrinkles (docs/model/face.md W1-W3): two families of
+        // lines, across the face's vertical axis (phase y / L) and across
+        // its horizontal one (x / L), each of height A cos(2 pi phase), so
+        // the normal tilts by slope sin(2 pi phase) along the axis; their
+        // furrows are shadowed. Where a wavelength covers under about three
+        // pixels the lines would alias: they fade into their mean
+        // brightness instead, the furrows' mean shadow times the mean
+        // cosine of the tilted normals (about 1 / sqrt(1 + s^2 / 2)), so a
+        // wrinkled brow stays as dark far away as close up (the filtering
+        // rule of Toksvig 2005, "Mipmapping normal maps").
+        var furrow = 0.0;
+        var tilt = 1.0;
+        if (v.wrinkle.x + v.wrinkle.y > 1e-4) {
+            let ax = (inst.model * vec4<f32>(1.0, 0.0, 0.0, 0.0)).xyz;
+            let ay = (inst.model * vec4<f32>(0.0, 1.0, 0.0, 0.0)).xyz;
+            let dx = normalize(ax - n * dot(ax, n));
+            let dy = normalize(ay - n * dot(ay, n));
+            let rx = clamp((0.33 - fwidth(v.wrinkle.z)) * 6.0, 0.0, 1.0);
+            let ry = clamp((0.33 - fwidth(v.wrinkle.w)) * 6.0, 0.0, 1.0);
+            let px = 6.2831853 * v.wrinkle.z;
+            let py = 6.2831853 * v.wrinkle.w;
+            n = normalize(n + dx * (v.wrinkle.x * sin(px) * rx) + dy * (v.wrinkle.y * sin(py) * ry));
+            let vx = 0.25 * (1.0 - cos(px)) * (1.0 - cos(px));
+            let vy = 0.25 * (1.0 - cos(py)) * (1.0 - cos(py));
+            tilt = mix(inverseSqrt(1.0 + 0.5 * v.wrinkle.x * v.wrinkle.x), 1.0, rx)
+                * mix(inverseSqrt(1.0 + 0.5 * v.wrinkle.y * v.wrinkle.y), 1.0, ry);
+            furrow = min(v.wrinkle.x, 1.0) * mix(0.27, vx * vx, rx)
+                + min(v.wrinkle.y, 1.0) * mix(0.27, vy * vy, ry);
+        }
         // Skin: light wraps past the terminator (scattered under the
         // surface) and reddens there; a weak, broad sheen instead of a
         // plastic highlight; a faint rim where the skin turns away.
@@ -109,7 +142,8 @@ fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
         let c2 = max(dot(n, h), 0.0) * max(dot(n, h), 0.0);
         let c4 = c2 * c2;
         let sheen = 0.06 * c4 * c4 * c4;
-        let lit = base * (0.20 + 0.80 * kd + 0.30 * fd) + base * scatter + vec3<f32>(sheen + rim * 0.5);
+        let shade = (1.0 - 0.45 * furrow) * tilt;
+        let lit = (base * (0.20 + 0.80 * kd + 0.30 * fd) + base * scatter) * shade + vec3<f32>(sheen + rim * 0.5);
         return vec4<f32>(lit, 1.0);
     }
     if (material == 1u) {

@@ -95,18 +95,22 @@ pub struct Model {
 impl Model {
     /// Set what `profile` fixes, in the parameters
     /// ([`Params::apply_profile`]) and the face's blinks (the seed blinks
-    /// only when neutral, at the thesis's rate whatever the situation).
+    /// only when neutral, at the thesis's rate whatever the situation) and
+    /// skin (the seed's skin never wrinkles).
     pub fn apply_profile(&mut self, profile: Profile) {
         self.params.apply_profile(profile);
         let b = &self.face.params.blink;
-        let seed_blinks = b.neutral_only
+        let seed_face = b.neutral_only
             && b.engaged_interval_scale == 1.0
             && b.arousal_gain == 0.0
-            && b.levator_gain == 1.0;
-        if profile == Profile::Seed && !seed_blinks {
+            && b.levator_gain == 1.0
+            && self.face.params.skin.wrinkle_spacing_m == 0.0;
+        if profile == Profile::Seed && !seed_face {
             // The face is shared: copied once here, not per run (the scene
             // loader applies the profile to the face it shares).
-            let blink = &mut Arc::make_mut(&mut self.face).params.blink;
+            let params = &mut Arc::make_mut(&mut self.face).params;
+            params.skin.wrinkle_spacing_m = 0.0;
+            let blink = &mut params.blink;
             blink.neutral_only = true;
             blink.engaged_interval_scale = 1.0;
             blink.arousal_gain = 0.0;
