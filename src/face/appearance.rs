@@ -5,12 +5,17 @@
 //! brow ridge rises with frontalis and knits with corrugator, exactly as
 //! far as the skin moves (docs/model/face.md "Appearance").
 //!
-//! Colours are linear RGB. Regions are soft-edged (a few millimetres of
-//! blend) so no vertex-sized steps show at any resolution.
+//! Colours are linear RGB. The skin's own colour (tone, flush, lash line)
+//! is a colour per vertex; the three regions with sharp borders (lips,
+//! brows, hair) are given as signed distances per vertex instead
+//! ([`Regions`]), which the renderer interpolates and thresholds per pixel:
+//! a border then runs straight through the triangles, sharp and
+//! antialiased, at any mesh resolution, where interpolated colours would
+//! blur it over a triangle and step it from vertex to vertex.
 
 use glam::{Vec2, Vec3};
 
-use super::mesh::{HeadMesh, Landmarks, dims, mirror};
+use super::mesh::{HeadMesh, Landmarks, dims};
 
 /// The colours of a face (linear RGB).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -62,8 +67,19 @@ const HAIRLINE: [(f32, f32); 9] = [
     (180.0, -0.088),
 ];
 
-/// Width of every region's soft edge, m.
-const EDGE: f32 = 0.0025;
+/// Half-width of each region's soft border, m: the vermilion's border is
+/// sharp, a brow's hairs thin out over a millimetre or so, the hairline
+/// over more.
+const SOFT: [f32; 3] = [0.0008, 0.0013, 0.0015];
+
+/// A point's place against the painted borders, in units of each
+/// border's soft half-width: the signed distance inside the lips, the
+/// height above the brow's middle line, the height above the hairline,
+/// and the brow's half-width. The renderer (`render/shader.wgsl`) covers
+/// the lips where the first is positive, the brow where
+/// `half - |height|` is, the hair where the third is, each with
+/// `smoothstep(-1, 1, u)` widened to a pixel where a pixel is wider.
+pub type Regions = [f32; 4];
 
 fn smooth(edge0: f32, edge1: f32, x: f32) -> f32 {
     let t = ((x - edge0) / (edge1 - edge0)).clamp(0.0, 1.0);
@@ -84,68 +100,65 @@ fn hairline(azimuth_deg: f32) -> f32 {
     h0 + (h1 - h0) * (a - a0) / (a1 - a0)
 }
 
-/// How much of the hair covers the point (0..1); `soft` is the half-width
-/// of the hairline's blend (wider on a coarse mesh).
-fn hair(p: Vec3, soft: f32) -> f32 {
+/// Signed height of the point above the hairline, m.
+fn hair(p: Vec3) -> f32 {
     let azimuth = p.x.atan2(p.z - dims::Z_C).to_degrees();
-    smooth(-soft, soft, p.y - hairline(azimuth))
+    p.y - hairline(azimuth)
 }
 
-/// Distance from `p` to the polyline `pts`, and where along it (0..1).
-fn to_polyline(p: Vec3, pts: &[Vec3]) -> (f32, f32) {
-    let total: f32 = pts.windows(2).map(|w| w[0].distance(w[1])).sum();
-    let (mut best, mut at, mut run) = (f32::MAX, 0.0, 0.0);
-    for w in pts.windows(2) {
-        let (a, b) = (w[0], w[1]);
-        let len = a.distance(b);
-        let t = ((p - a).dot(b - a) / (len * len)).clamp(0.0, 1.0);
-        let d = p.distance(a + (b - a) * t);
-        if d < best {
-            best = d;
-            at = (run + t * len) / total;
-        }
-        run += len;
-    }
-    (best, at)
+/// Where the point is across the brow on its side, m: its height above the
+/// brow's middle line, and the brow's half-width there (negative past the
+/// brow's ends and behind the face); the point is inside the brow where
+/// `|height| < half`. The middle line runs through the brow landmarks as a
+/// height over the distance from the face's midline, so both values are
+/// smooth over the whole face: the renderer interpolates them linearly
+/// and takes the height's magnitude per pixel, and the band stays whole
+/// even where it passes between the vertices of a coarse mesh. The brow
+/// is thickest at its head and tapers to the tail; `min_half` (half the
+/// mesh's spacing) keeps it from thinning below what that mesh can show.
+fn brow(p: Vec3, l: &Landmarks, min_half: f32) -> (f32, f32) {
+    let line = [
+        l.brow_inner - Vec3::new(0.002, 0.0, 0.0),
+        l.brow_inner + Vec3::new(0.003, 0.001, 0.0),
+        l.brow_mid + Vec3::new(0.0, 0.001, 0.0),
+        l.brow_outer,
+        l.brow_outer + Vec3::new(0.006, -0.005, 0.0),
+    ];
+    let (x0, x1) = (line[0].x, line[4].x);
+    let x = p.x.abs();
+    let k = line
+        .windows(2)
+        .position(|w| x <= w[1].x)
+        .unwrap_or(line.len() - 2);
+    let (a, b) = (line[k], line[k + 1]);
+    let f = ((x - a.x) / (b.x - a.x)).clamp(0.0, 1.0);
+    let height = p.y - (a.y + (b.y - a.y) * f);
+    let t = ((x - x0) / (x1 - x0)).clamp(0.0, 1.0);
+    let half = (0.0058 - 0.0032 * t)
+        .max(min_half)
+        // Rounded off past either end.
+        .min(x - x0 + 0.002)
+        .min(x1 - x + 0.0015)
+        // Only the front of the face (not the inside of the lid shells).
+        .min(p.z - l.brow_outer.z + 0.015);
+    (height, half)
 }
 
-/// How much brow covers the point (0..1): a band along the brow
-/// landmarks, thick at the head and tapering to the tail. `soft` is the
-/// half-width of its soft edge (wider on a coarse mesh, so the band never
-/// falls between vertices and breaks into dashes).
-fn brow(p: Vec3, l: &Landmarks, soft: f32) -> f32 {
-    let side = |f: fn(Vec3) -> Vec3| {
-        let pts = [
-            f(l.brow_inner - Vec3::new(0.002, 0.0, 0.0)),
-            f(l.brow_inner + Vec3::new(0.003, 0.001, 0.0)),
-            f(l.brow_mid + Vec3::new(0.0, 0.001, 0.0)),
-            f(l.brow_outer),
-            f(l.brow_outer + Vec3::new(0.006, -0.005, -0.004)),
-        ];
-        let (d, t) = to_polyline(p, &pts);
-        let half = (0.0058 - 0.0032 * t).max(soft);
-        smooth(half + soft, half - soft, d)
-    };
-    // Only the front of the face (not the inside of the lid shells).
-    let front = smooth(-0.01, 0.0, p.z - l.brow_outer.z + 0.01);
-    side(|v| v).max(side(mirror)) * front
-}
-
-/// How much lip covers the point (0..1): the vermilion, an ellipse-like
-/// band above and below the mouth line, widest at the middle (with a
-/// Cupid's bow) and closing at the corners.
-fn lips(p: Vec3, l: &Landmarks, soft: f32) -> f32 {
+/// Signed distance of the point inside the lips' vermilion, m: a band
+/// above and below the mouth line, widest at the middle (with a Cupid's
+/// bow) and closing at the corners.
+fn lips(p: Vec3, l: &Landmarks) -> f32 {
     let half_w = l.mouth_corner.x;
-    let u = (p.x / half_w).abs();
-    if u >= 1.0 || p.z < l.mouth_corner.z - 0.012 {
-        return 0.0;
-    }
-    let taper = (1.0 - u * u).max(0.0).sqrt();
+    let u = (p.x / half_w).abs().min(1.0);
+    let taper = (1.0 - u * u).powf(0.3);
     let bow =
         1.0 + 0.18 * (-((u - 0.28) / 0.12).powi(2)).exp() - 0.15 * (-(u / 0.08).powi(2)).exp();
     let top = dims::MOUTH_Y + (l.upper_lip.y - dims::MOUTH_Y + 0.0025) * taper * bow;
     let bottom = dims::MOUTH_Y - (dims::MOUTH_Y - l.lower_lip.y + 0.0035) * taper;
-    smooth(top + soft, top - soft, p.y) * smooth(bottom - soft, bottom + soft, p.y)
+    (top - p.y)
+        .min(p.y - bottom)
+        .min(half_w - p.x.abs())
+        .min(p.z - l.mouth_corner.z + 0.012)
 }
 
 /// How dark the lash line is at the point (0..1): within a millimetre or
@@ -183,8 +196,17 @@ fn edge_length(mesh: &HeadMesh) -> Vec<f32> {
         .collect()
 }
 
-/// Paint the rest mesh: one linear RGBA colour per vertex.
-pub fn paint(mesh: &HeadMesh, style: &FaceStyle) -> Vec<[f32; 4]> {
+/// The painted rest mesh.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Paint {
+    /// Skin colour per vertex (tone, flush, lash line), linear RGBA.
+    pub colours: Vec<[f32; 4]>,
+    /// Borders of the lips, brows and hair per vertex ([`Regions`]).
+    pub regions: Vec<Regions>,
+}
+
+/// Paint the rest mesh.
+pub fn paint(mesh: &HeadMesh, style: &FaceStyle) -> Paint {
     let l = &mesh.landmarks;
     let rim = |loops: &[Vec<u32>; 2]| -> Vec<Vec3> {
         loops
@@ -195,60 +217,93 @@ pub fn paint(mesh: &HeadMesh, style: &FaceStyle) -> Vec<[f32; 4]> {
     };
     let (upper, lower) = (rim(&mesh.rims.upper_lid), rim(&mesh.rims.lower_lid));
     let spacing = edge_length(mesh);
-    mesh.positions
+    let colours = mesh
+        .positions
+        .iter()
+        .map(|&p| {
+            let c = mix(style.skin, style.flush, flush(p, l));
+            let c = mix(c, style.lashes, lashes(p, &upper, &lower));
+            [c[0], c[1], c[2], 1.0]
+        })
+        .collect();
+    let regions = mesh
+        .positions
         .iter()
         .zip(spacing)
         .map(|(&p, spacing)| {
-            let mut c = mix(style.skin, style.flush, flush(p, l));
-            c = mix(c, style.lips, lips(p, l, (0.8 * spacing).max(0.002)));
-            c = mix(c, style.brow, brow(p, l, (0.5 * spacing).max(0.002)));
-            c = mix(c, style.lashes, lashes(p, &upper, &lower));
-            c = mix(c, style.hair, hair(p, (0.8 * spacing).max(2.0 * EDGE)));
-            [c[0], c[1], c[2], 1.0]
+            let (height, half) = brow(p, l, 0.5 * spacing);
+            [
+                lips(p, l) / SOFT[0],
+                height / SOFT[1],
+                hair(p) / SOFT[2],
+                half / SOFT[1],
+            ]
         })
-        .collect()
+        .collect();
+    Paint { colours, regions }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::face::mesh::MeshParams;
-
-    fn close(a: [f32; 4], b: [f32; 3]) -> bool {
-        (0..3).all(|k| (a[k] - b[k]).abs() < 0.02)
-    }
+    use crate::face::mesh::{MeshParams, mirror};
 
     /// Each region lands where its landmark says, and only there: the
-    /// vertex nearest each landmark takes the region's colour; the nose
-    /// tip and the chin stay skin.
+    /// vertex nearest each landmark is inside the region (and no other);
+    /// the nose tip, the chin and the forehead are in none.
     #[test]
     fn regions_sit_on_their_landmarks() {
-        let mesh = HeadMesh::generate(MeshParams { rows: 64 });
-        let s = FaceStyle::default();
-        let colours = paint(&mesh, &s);
-        let at = |p: Vec3| {
-            let i = (0..mesh.positions.len())
-                .min_by(|&a, &b| {
-                    mesh.positions[a]
-                        .distance(p)
-                        .total_cmp(&mesh.positions[b].distance(p))
-                })
-                .expect("vertices");
-            colours[i]
-        };
+        for rows in [32, 64] {
+            let mesh = HeadMesh::generate(MeshParams { rows });
+            let paint = paint(&mesh, &FaceStyle::default());
+            let at = |p: Vec3| {
+                let i = (0..mesh.positions.len())
+                    .min_by(|&a, &b| {
+                        mesh.positions[a]
+                            .distance(p)
+                            .total_cmp(&mesh.positions[b].distance(p))
+                    })
+                    .expect("vertices");
+                let r = paint.regions[i];
+                [r[0] > 0.0, r[3] - r[1].abs() > 0.0, r[2] > 0.0]
+            };
+            let l = &mesh.landmarks;
+            let (lips, brow, hair) = (
+                [true, false, false],
+                [false, true, false],
+                [false, false, true],
+            );
+            assert_eq!(at(l.brow_mid), brow, "rows {rows}");
+            assert_eq!(at(mirror(l.brow_mid)), brow);
+            assert_eq!(at(l.upper_lip), lips);
+            assert_eq!(at(l.lower_lip), lips);
+            assert_eq!(at(Vec3::new(0.0, dims::TOP_Y, dims::Z_C)), hair);
+            for skin in [l.nose_tip, l.chin, l.forehead_mid] {
+                assert_eq!(at(skin), [false; 3]);
+            }
+        }
+    }
+
+    /// Across the whole width of each brow, on the coarse mesh, some vertex
+    /// in every column of the mesh is inside the brow: the band never
+    /// breaks into dashes. Between the brows and past their tails is
+    /// outside.
+    #[test]
+    fn brows_are_unbroken_on_a_coarse_mesh() {
+        let mesh = HeadMesh::generate(MeshParams { rows: 32 });
         let l = &mesh.landmarks;
-        assert!(close(at(l.brow_mid), s.brow), "{:?}", at(l.brow_mid));
-        assert!(close(at(mirror(l.brow_mid)), s.brow));
-        assert!(close(at(l.upper_lip), s.lips), "{:?}", at(l.upper_lip));
-        assert!(close(at(l.lower_lip), s.lips), "{:?}", at(l.lower_lip));
-        assert!(close(at(Vec3::new(0.0, dims::TOP_Y, dims::Z_C)), s.hair));
-        assert!(close(at(l.nose_tip), s.skin));
-        assert!(close(at(l.chin), s.skin));
-        assert!(
-            close(at(l.forehead_mid), s.skin),
-            "{:?}",
-            at(l.forehead_mid)
-        );
+        let spacing = edge_length(&mesh);
+        for k in 0..=20 {
+            let x = l.brow_inner.x + (l.brow_outer.x - l.brow_inner.x) * k as f32 / 20.0;
+            let inside = mesh.positions.iter().zip(&spacing).any(|(v, s)| {
+                let (height, half) = brow(*v, l, 0.5 * s);
+                (v.x - x).abs() < 0.5 * s && v.z > 0.0 && height.abs() < half
+            });
+            assert!(inside, "x {x}");
+        }
+        for p in [l.glabella, l.brow_outer + Vec3::new(0.015, 0.0, 0.0)] {
+            assert!(brow(p, l, 0.0).1 < 0.0, "{p}");
+        }
     }
 
     #[test]

@@ -19,9 +19,12 @@ pub struct Face {
     pub params: FaceParams,
     /// Muscles and precomputed fields.
     pub rig: Rig,
-    /// Each rest vertex's colour (hair, brows, lips, lash line, skin),
-    /// linear RGBA ([`super::appearance::paint`]).
-    pub colours: Vec<[f32; 4]>,
+    /// Colours of the skin (tone, flush, lash line) and borders of the
+    /// lips, brows and hair on the rest vertices
+    /// ([`super::appearance::paint`]).
+    pub paint: super::appearance::Paint,
+    /// The colours [`Face::paint`] was painted with.
+    pub style: super::appearance::FaceStyle,
     /// Rest frames for measuring the skin's compression (wrinkles).
     pub wrinkle_basis: super::wrinkle::WrinkleBasis,
 }
@@ -36,13 +39,15 @@ impl Face {
     /// Build the rig on a given mesh (generated or imported, see `exchange.rs`).
     pub fn from_mesh(mesh: HeadMesh, params: FaceParams) -> Face {
         let rig = Rig::build(&mesh, &params);
-        let colours = super::appearance::paint(&mesh, &super::appearance::FaceStyle::default());
+        let style = super::appearance::FaceStyle::default();
+        let paint = super::appearance::paint(&mesh, &style);
         let wrinkle_basis = super::wrinkle::WrinkleBasis::new(&mesh, &params.skin);
         Face {
             mesh,
             params,
             rig,
-            colours,
+            paint,
+            style,
             wrinkle_basis,
         }
     }

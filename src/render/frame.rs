@@ -71,6 +71,8 @@ pub enum Material {
     Floor = 2,
     /// Skin: wrapped, reddened diffuse and a weak sheen.
     Skin = 3,
+    /// The face: skin with its painted borders and wrinkles.
+    Face = 4,
 }
 
 /// One mesh instance.
@@ -127,6 +129,8 @@ pub struct Frame {
     pub draws: Vec<Draw>,
     /// Deformed face vertices in the face frame (drawn with [`MeshKey::Face`]).
     pub face: Vec<Vertex>,
+    /// The colours the face's painted regions are drawn in.
+    pub face_style: crate::face::appearance::FaceStyle,
     /// Eyelashes on the deformed lid rims, face frame, a triangle list
     /// ([`MeshKey::Lashes`]).
     pub lashes: Vec<Vertex>,
@@ -316,7 +320,7 @@ impl Frame {
             model: Mat4::from_rotation_translation(head_q, head_p)
                 * Mat4::from_translation(face_offset(&w.plan)),
             color: WHITE,
-            material: Material::Skin,
+            material: Material::Face,
         });
         let face = face_vertices(sim);
         let face_frame = Mat4::from_rotation_translation(head_q, head_p)
@@ -362,6 +366,7 @@ impl Frame {
             camera,
             draws,
             face,
+            face_style: sim.model().face.style,
             lashes,
             body,
             avatar,
@@ -498,13 +503,20 @@ fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
         color,
         material: Material::Plain,
     };
-    let mut parts = vec![ellipsoid(
-        Vec3::new(0.0, (upper.y + lower.y) / 2.0, upper.z.min(lower.z) - 0.036),
-        Vec3::new(w * 0.85, 0.014 + gap * 0.5, 0.026),
-        MOUTH,
-    )];
+    // The cavity is dark and reaches past the mouth's corners, which lie
+    // well behind its middle, so no inside of the head shows through the
+    // opening; its front stays behind the teeth's.
+    let cavity = |front: f32| {
+        let half_d = 0.026;
+        ellipsoid(
+            Vec3::new(0.0, (upper.y + lower.y) / 2.0, front - half_d),
+            Vec3::new(w * 1.3, 0.014 + gap * 0.5, half_d),
+            MOUTH,
+        )
+    };
+    let lips_back = upper.z.min(lower.z) - 0.006;
     if gap < TEETH_SHOW_GAP {
-        return parts;
+        return vec![cavity(lips_back)];
     }
     // Incisal edges at rest: the upper one a little below the upper lip's
     // rest edge and behind it; the lower one overlapped by the upper
@@ -529,19 +541,26 @@ fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
         .filter(|p| p.z > rest_lip.z - LIP_REACH)
         .fold(f32::INFINITY, |z, p| z.min(p.z));
     let push = (upper_edge.z - (skin - 0.001)).max(0.0);
-    parts.extend([
+    // Light reaches teeth behind the lips only through the opening: the
+    // open fraction of their view out of a slit of width `gap` at the
+    // lips' depth `d` is about g / (g + 2 d); scaled so a wide-open mouth
+    // is fully lit.
+    let lit = (1.2 * gap / (gap + 2.0 * INCISOR_DEPTH)).clamp(0.3, 1.0);
+    let teeth = [TEETH[0] * lit, TEETH[1] * lit, TEETH[2] * lit, 1.0];
+    let teeth_front = upper_edge.z.min(lower_edge.z) - push;
+    vec![
+        cavity(lips_back.min(teeth_front - 0.0015)),
         ellipsoid(
             upper_edge + Vec3::new(0.0, half_h, -half_d - push),
             Vec3::new(half_w, half_h, half_d),
-            TEETH,
+            teeth,
         ),
         ellipsoid(
             lower_edge + Vec3::new(0.0, -0.9 * half_h, -half_d - push),
             Vec3::new(w * 0.55, half_h * 0.9, half_d),
-            TEETH,
+            teeth,
         ),
-    ]);
-    parts
+    ]
 }
 
 /// How far the upper incisors reach below the upper lip's rest edge, m:
@@ -658,10 +677,12 @@ fn face_vertices(sim: &Sim) -> Vec<Vertex> {
     );
     pos.iter()
         .zip(&normals)
-        .zip(&face.colours)
+        .zip(&face.paint.colours)
+        .zip(&face.paint.regions)
         .zip(&wrinkles)
-        .map(|(((p, n), c), w)| Vertex {
+        .map(|((((p, n), c), r), w)| Vertex {
             wrinkle: *w,
+            paint: *r,
             ..Vertex::coloured(*p, *n, *c)
         })
         .collect()

@@ -5,8 +5,8 @@ use std::f32::consts::{PI, TAU};
 
 use glam::Vec3;
 
-/// One mesh vertex: position, unit normal (local frame), colour and skin
-/// wrinkle data.
+/// One mesh vertex: position, unit normal (local frame), colour, and the
+/// face's wrinkles and painted borders.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct Vertex {
@@ -19,6 +19,9 @@ pub struct Vertex {
     /// Skin wrinkles: the lines' slopes and phases along the face's axes
     /// ([`crate::face::wrinkle::WrinkleVertex`]); zero elsewhere.
     pub wrinkle: [f32; 4],
+    /// The face's painted borders (lips, brows, hair) as signed distances
+    /// ([`crate::face::appearance::Regions`]); unused elsewhere.
+    pub paint: [f32; 4],
 }
 
 impl Vertex {
@@ -34,6 +37,7 @@ impl Vertex {
             normal: normal.to_array(),
             color,
             wrinkle: [0.0; 4],
+            paint: [0.0; 4],
         }
     }
 }

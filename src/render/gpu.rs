@@ -63,6 +63,8 @@ struct Globals {
     fill_dir: [f32; 4],
     /// x: the floor's light, the same at every point of it.
     floor_light: [f32; 4],
+    /// The face's lips, brows and hair (linear RGB).
+    face_regions: [[f32; 4]; 3],
 }
 
 #[repr(C)]
@@ -353,7 +355,7 @@ impl Renderer {
             bind_group_layouts: &[Some(&globals_layout), Some(&instance_layout)],
             immediate_size: 0,
         });
-        let mesh_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x4, 3 => Float32x4];
+        let mesh_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x4, 3 => Float32x4, 4 => Float32x4];
         let line_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x4];
         let pipeline = |vs: &str,
                         fs: &str,
@@ -615,6 +617,10 @@ impl Renderer {
             key_dir: key.extend(0.0).to_array(),
             fill_dir: fill.extend(0.0).to_array(),
             floor_light: [floor_light, 0.0, 0.0, 0.0],
+            face_regions: {
+                let s = &frame.face_style;
+                [s.lips, s.brow, s.hair].map(|c| [c[0], c[1], c[2], 1.0])
+            },
         };
         self.queue
             .write_buffer(&self.globals, 0, bytemuck::bytes_of(&globals));

@@ -9,6 +9,8 @@ struct Globals {
     fill_dir: vec4<f32>,
     // x: the floor's light (ambient + diffuse on an upward normal).
     floor_light: vec4<f32>,
+    // The face's lips, brows and hair.
+    face_regions: array<vec4<f32>, 3>,
 };
 
 struct Instance {
@@ -16,7 +18,7 @@ struct Instance {
     // Inverse transpose of the model's upper 3x3, in a mat4 for alignment.
     normal: mat4x4<f32>,
     color: vec4<f32>,
-    // x: material (0 plain, 1 eye, 2 floor, 3 skin).
+    // x: material (0 plain, 1 eye, 2 floor, 3 skin, 4 face).
     params: vec4<f32>,
 };
 
@@ -31,6 +33,8 @@ struct VOut {
     @location(3) color: vec4<f32>,
     // Skin wrinkles: slopes across x and y, phases along x and y.
     @location(4) wrinkle: vec4<f32>,
+    // Face: lips, brow offset, hair, brow half-width (appearance.rs).
+    @location(5) paint: vec4<f32>,
 };
 
 @vertex
@@ -39,8 +43,10 @@ fn vs_mesh(
     @location(1) normal: vec3<f32>,
     @location(2) color: vec4<f32>,
     @location(3) wrinkle: vec4<f32>,
+    @location(4) paint: vec4<f32>,
 ) -> VOut {
     var o: VOut;
+    o.paint = paint;
     o.color = color;
     o.wrinkle = wrinkle;
     let w = inst.model * vec4<f32>(pos, 1.0);
@@ -100,7 +106,7 @@ fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
     let key = normalize(-g.key_dir.xyz);
     let fill = normalize(-g.fill_dir.xyz);
     let h = normalize(key + view_dir);
-    if (material == 3u) {
+    if (material >= 3u) {
         // Expression wrinkles (docs/model/face.md W1-W3): two families of
         // lines, across the face's vertical axis (phase y / L) and across
         // its horizontal one (x / L), each of height A cos(2 pi phase), so
@@ -113,7 +119,7 @@ fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
         // rule of Toksvig 2005, "Mipmapping normal maps").
         var furrow = 0.0;
         var tilt = 1.0;
-        if (v.wrinkle.x + v.wrinkle.y > 1e-4) {
+        if (material == 4u && v.wrinkle.x + v.wrinkle.y > 1e-4) {
             let ax = (inst.model * vec4<f32>(1.0, 0.0, 0.0, 0.0)).xyz;
             let ay = (inst.model * vec4<f32>(0.0, 1.0, 0.0, 0.0)).xyz;
             let dx = normalize(ax - n * dot(ax, n));
@@ -129,6 +135,17 @@ fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
                 * mix(inverseSqrt(1.0 + 0.5 * v.wrinkle.y * v.wrinkle.y), 1.0, ry);
             furrow = min(v.wrinkle.x, 1.0) * mix(0.27, vx * vx, rx)
                 + min(v.wrinkle.y, 1.0) * mix(0.27, vy * vy, ry);
+        }
+        if (material == 4u) {
+            // Painted borders (face/appearance.rs): each region covers
+            // where its interpolated signed distance is positive, blended
+            // over its soft border or one pixel, whichever is wider.
+            let inside = vec3<f32>(v.paint.x, v.paint.w - abs(v.paint.y), v.paint.z);
+            let aa = max(fwidth(inside), vec3<f32>(1.0));
+            let cover = smoothstep(-aa, aa, inside);
+            base = mix(base, g.face_regions[0].rgb, cover.x);
+            base = mix(base, g.face_regions[1].rgb, cover.y);
+            base = mix(base, g.face_regions[2].rgb, cover.z);
         }
         // Skin: light wraps past the terminator (scattered under the
         // surface) and reddens there; a weak, broad sheen instead of a
