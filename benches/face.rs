@@ -1,6 +1,8 @@
 //! One skin deformation (`face::deform`) at about 2k, 20k and 100k
 //! vertices: anger at full intensity (7 muscle kinds, 11 channels, jaw
-//! 3.5 degrees) with both lids following a 10-degree downward gaze.
+//! 3.5 degrees) with both lids following a 10-degree downward gaze; and
+//! the wrinkle measurement of that deformed skin (`face::wrinkle::measure`,
+//! once per rendered frame).
 use criterion::{Criterion, criterion_group, criterion_main};
 use glam::Vec3;
 use rand::SeedableRng;
@@ -10,6 +12,7 @@ use shisen::face::mesh::MeshParams;
 use shisen::face::params::FaceParams;
 use shisen::face::tables::Emotion;
 use shisen::face::timing::{Pattern, Speed};
+use shisen::face::wrinkle::measure;
 use shisen::face::{Face, FaceState, deform};
 use std::hint::black_box;
 
@@ -29,6 +32,19 @@ fn bench(c: &mut Criterion) {
         let mut out = vec![Vec3::ZERO; n];
         g.bench_function(format!("anger_rows{rows}_{n}v"), |b| {
             b.iter(|| deform(black_box(&face), black_box(&state), &mut out))
+        });
+        deform(&face, &state, &mut out);
+        let mut wrinkles = Vec::new();
+        g.bench_function(format!("wrinkles_rows{rows}_{n}v"), |b| {
+            b.iter(|| {
+                measure(
+                    black_box(&face.mesh),
+                    &face.wrinkle_basis,
+                    &face.params.skin,
+                    black_box(&out),
+                    &mut wrinkles,
+                )
+            })
         });
     }
     g.finish();

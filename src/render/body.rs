@@ -23,7 +23,7 @@
 
 use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
 
-use glam::{Mat4, Quat, Vec3, Vec4};
+use glam::{Mat4, Quat, Vec3};
 
 use super::geometry::Vertex;
 use crate::physics::body::{BodyPlan, Shape, arm_ik, seg};
@@ -125,6 +125,9 @@ pub struct SkinVertex {
     pub normal: [f32; 3],
     /// Linear RGBA colour.
     pub color: [f32; 4],
+    /// A painted border: signed distance inside it (in its soft
+    /// half-widths) and the colour there ([`Vertex::paint`]).
+    pub paint: [f32; 4],
     /// Bones (`Bone as u8`) of the weights; unused slots have weight 0.
     pub bones: [u8; 4],
     /// Weights, non-negative, summing to 1.
@@ -166,9 +169,10 @@ fn weights(pairs: &[(Bone, f32)]) -> Weights {
     (bones, w.map(|x| x / sum))
 }
 
-/// A vertex under construction: position, colour, weights, part.
+/// A vertex under construction: position, colour, weights, part, painted
+/// border ([`Vertex::paint`]).
 #[derive(Clone, Copy)]
-struct Pt(Vec3, [f32; 4], Weights, Part);
+struct Pt(Vec3, [f32; 4], Weights, Part, [f32; 4]);
 
 /// Where a grid's triangles go: the whole body, also the first-person arm
 /// list from a ring on, or the arm list only.
@@ -189,12 +193,13 @@ struct Builder {
 }
 
 impl Builder {
-    fn push(&mut self, &Pt(p, color, (bones, weights), part): &Pt) -> u32 {
+    fn push(&mut self, &Pt(p, color, (bones, weights), part, paint): &Pt) -> u32 {
         let (pos, normal) = (p.to_array(), [0.0; 3]);
         let v = SkinVertex {
             pos,
             normal,
             color,
+            paint,
             bones,
             weights,
         };
@@ -338,14 +343,23 @@ const ELBOW_BLEND: f32 = 0.05;
 /// First-person arm list: the upper arm from this far below the shoulder.
 const FIRST_PERSON_FROM: f32 = 0.12;
 
-/// Share of the vest's colour at a torso point (design frame): 0 inside
-/// the neckline and the armholes.
+/// The vest's neckline and armholes at a torso point (design frame): the
+/// signed distance inside them (bare skin), in units of the hem's soft
+/// half-width, as the border of a [`Vertex::paint`] (the renderer
+/// thresholds it per pixel, so the hem stays sharp on the coarse torso).
 fn vest(d: Vec3) -> f32 {
     let arm = ((d.x.abs() - 0.215) / 0.085).powi(2) + ((d.y - 1.47) / 0.15).powi(2);
     let depth = 0.035 + 0.05 * smoothstep(-0.02, 0.04, d.z);
     let neck = (d.x / 0.09).powi(2) + ((d.y - 1.535) / depth).powi(2);
-    smoothstep(0.75, 1.3, arm.min(neck))
+    // Elliptic radius 1 on the hem; about 8.5 cm per unit of it there.
+    (1.0 - arm.min(neck).sqrt()) * 0.085 / HEM_SOFT
 }
+
+/// Half-width of the vest hem's soft edge, m.
+const HEM_SOFT: f32 = 0.0015;
+
+/// A vertex's painted border: none.
+const NO_BORDER: [f32; 4] = [-1e3, 0.0, 0.0, 0.0];
 
 /// Torso section point (design frame) at angle `th` (0 front, +X at pi/2).
 fn torso_point(y: f32, a: f32, f: f32, b: f32, th: f32) -> Vec3 {
@@ -376,10 +390,10 @@ fn torso(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle) {
     let point = |d: Vec3| {
         let p = origin + (d - Vec3::Y) * k;
         let arm = shoulders.map(|s| 0.5 * (1.0 - smoothstep(0.03, 0.085, p.distance(s))));
-        let c = Vec4::from(style.skin).lerp(Vec4::from(style.shirt), vest(d));
         let w = [(Bone::UpperArmL, arm[0]), (Bone::UpperArmR, arm[1])];
         let w = weights(&[(Bone::Torso, 1.0 - arm[0] - arm[1]), w[0], w[1]]);
-        Pt(p, c.to_array(), w, Part::Torso)
+        let skin = [vest(d), style.skin[0], style.skin[1], style.skin[2]];
+        Pt(p, style.shirt, w, Part::Torso, skin)
     };
     // Four rings per knot interval.
     let rings: Vec<Vec<Pt>> = (0..=(TORSO.len() - 1) * 4)
@@ -406,7 +420,7 @@ fn neck(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle) {
         let head = smoothstep(-0.03, 0.1, dy);
         let w = weights(&[(Bone::Torso, 1.0 - head), (Bone::Head, head)]);
         let p = centre + Vec3::new(a * s, 0.0, d * c);
-        Pt(p, style.skin, w, Part::Neck)
+        Pt(p, style.skin, w, Part::Neck, NO_BORDER)
     };
     // From inside the torso to inside the head.
     let rings: Vec<Vec<Pt>> = (0..=10)
@@ -458,7 +472,7 @@ fn arm(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle, side: usize) {
         // The deltoid's top partly stays with the torso.
         let t = 0.25 * smoothstep(0.3, 1.0, (s - p).dot(d1) / DELTOID_R);
         let w = weights(&[(Bone::Torso, t), (ua, 1.0 - t - f), (fa, f)]);
-        Pt(p, style.skin, w, Part::Arm(side))
+        Pt(p, style.skin, w, Part::Arm(side), NO_BORDER)
     };
     let mut specs: Vec<ArmRing> = Vec::new();
     // The deltoid: a ball round the shoulder pivot.
@@ -559,7 +573,7 @@ fn glove(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle, side: usize) {
         } else {
             Part::Fist(side)
         };
-        Pt(p, c, w, part)
+        Pt(p, c, w, part, NO_BORDER)
     };
     let mut rings: Vec<Vec<Pt>> = [
         -0.135, -0.131, -0.126, -0.117, -0.113, -0.109, -0.095, -0.091, -0.087, -0.078, -0.066,
@@ -638,7 +652,10 @@ impl BodyMesh {
                     sn += w * m.transform_vector3(n);
                 }
             }
-            Vertex::coloured(sp, sn.normalize_or(n), v.color)
+            Vertex {
+                paint: v.paint,
+                ..Vertex::coloured(sp, sn.normalize_or(n), v.color)
+            }
         }));
     }
 }

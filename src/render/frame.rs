@@ -73,6 +73,8 @@ pub enum Material {
     Skin = 3,
     /// The face: skin with its painted borders and wrinkles.
     Face = 4,
+    /// A skinned body: skin light, one painted border (the vest's hem).
+    Body = 5,
 }
 
 /// One mesh instance.
@@ -251,7 +253,7 @@ impl Frame {
                 mesh: d,
                 model: Mat4::IDENTITY,
                 color: WHITE,
-                material: Material::Skin,
+                material: Material::Body,
             });
         }
         if view != View::First {

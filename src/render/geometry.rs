@@ -19,8 +19,10 @@ pub struct Vertex {
     /// Skin wrinkles: the lines' slopes and phases along the face's axes
     /// ([`crate::face::wrinkle::WrinkleVertex`]); zero elsewhere.
     pub wrinkle: [f32; 4],
-    /// The face's painted borders (lips, brows, hair) as signed distances
-    /// ([`crate::face::appearance::Regions`]); unused elsewhere.
+    /// Painted borders, thresholded per pixel: the face's lips, brows and
+    /// hair ([`crate::face::appearance::Regions`]); on the bodies, the
+    /// signed distance inside one border (in its soft half-widths) and the
+    /// RGB colour there; unused elsewhere.
     pub paint: [f32; 4],
 }
 

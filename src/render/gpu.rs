@@ -8,7 +8,7 @@ use std::num::NonZeroU64;
 use glam::{Mat3, Mat4, Vec3};
 use wgpu::util::DeviceExt;
 
-use super::frame::{AvatarPart, Frame, LineVertex, Looks, MeshKey};
+use super::frame::{AvatarPart, Frame, LineVertex, Looks, Material, MeshKey};
 use super::geometry::{self, MeshData, Vertex};
 
 /// Rendering errors.
@@ -252,6 +252,10 @@ pub struct Renderer {
     mesh_pipeline: wgpu::RenderPipeline,
     /// The same with back faces culled, for closed meshes.
     closed_pipeline: wgpu::RenderPipeline,
+    /// The face's.
+    face_pipeline: wgpu::RenderPipeline,
+    /// The skinned bodies'.
+    body_pipeline: wgpu::RenderPipeline,
     line_pipeline: wgpu::RenderPipeline,
     globals: wgpu::Buffer,
     globals_bind: wgpu::BindGroup,
@@ -408,10 +412,10 @@ impl Renderer {
                 cache: None,
             })
         };
-        let mesh = |cull_mode| {
+        let mesh = |vs, fs, cull_mode| {
             pipeline(
-                "vs_mesh",
-                "fs_mesh",
+                vs,
+                fs,
                 &mesh_attrs,
                 size_of::<Vertex>(),
                 wgpu::PrimitiveTopology::TriangleList,
@@ -420,11 +424,16 @@ impl Renderer {
                 cull_mode,
             )
         };
-        let mesh_pipeline = mesh(None);
+        let mesh_pipeline = mesh("vs_mesh", "fs_mesh", None);
         // Closed meshes wound counter-clockwise seen from outside (the
         // bodies, spheres, capsules, boxes) never show their inside: their
         // back faces are skipped, half their triangles.
-        let closed_pipeline = mesh(Some(wgpu::Face::Back));
+        let closed_pipeline = mesh("vs_mesh", "fs_mesh", Some(wgpu::Face::Back));
+        // The face (an open mesh) has its own shaders: wrinkles and painted
+        // borders, which no other mesh pays for.
+        let face_pipeline = mesh("vs_face", "fs_face", None);
+        // The skinned bodies (closed) likewise: the vest's hem.
+        let body_pipeline = mesh("vs_body", "fs_body", Some(wgpu::Face::Back));
         // Overlays are drawn over everything so rays inside the head show.
         let line_pipeline = pipeline(
             "vs_line",
@@ -442,6 +451,8 @@ impl Renderer {
             samples,
             mesh_pipeline,
             closed_pipeline,
+            face_pipeline,
+            body_pipeline,
             line_pipeline,
             globals,
             globals_bind,
@@ -700,7 +711,11 @@ impl Renderer {
                     }
                     key => &self.meshes[&key],
                 };
-                pass.set_pipeline(if d.mesh.is_closed() {
+                pass.set_pipeline(if d.material == Material::Face {
+                    &self.face_pipeline
+                } else if d.material == Material::Body {
+                    &self.body_pipeline
+                } else if d.mesh.is_closed() {
                     &self.closed_pipeline
                 } else {
                     &self.mesh_pipeline

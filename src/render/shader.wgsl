@@ -18,7 +18,7 @@ struct Instance {
     // Inverse transpose of the model's upper 3x3, in a mat4 for alignment.
     normal: mat4x4<f32>,
     color: vec4<f32>,
-    // x: material (0 plain, 1 eye, 2 floor, 3 skin, 4 face).
+    // x: material (0 plain, 1 eye, 2 floor, 3 skin, 4 face: fs_face).
     params: vec4<f32>,
 };
 
@@ -31,10 +31,6 @@ struct VOut {
     @location(1) normal: vec3<f32>,
     @location(2) local: vec3<f32>,
     @location(3) color: vec4<f32>,
-    // Skin wrinkles: slopes across x and y, phases along x and y.
-    @location(4) wrinkle: vec4<f32>,
-    // Face: lips, brow offset, hair, brow half-width (appearance.rs).
-    @location(5) paint: vec4<f32>,
 };
 
 @vertex
@@ -42,18 +38,47 @@ fn vs_mesh(
     @location(0) pos: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) color: vec4<f32>,
-    @location(3) wrinkle: vec4<f32>,
-    @location(4) paint: vec4<f32>,
 ) -> VOut {
     var o: VOut;
-    o.paint = paint;
     o.color = color;
-    o.wrinkle = wrinkle;
     let w = inst.model * vec4<f32>(pos, 1.0);
     o.clip = g.view_proj * w;
     o.world = w.xyz;
     o.normal = (inst.normal * vec4<f32>(normal, 0.0)).xyz;
     o.local = pos;
+    return o;
+}
+
+// The face has its own entry points, so no other mesh pays for its
+// wrinkles and painted borders (a software rasteriser runs a shader's
+// every instruction for every pixel it covers).
+struct FaceOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) color: vec4<f32>,
+    // Wrinkles: slopes across x and y, phases along x and y.
+    @location(3) wrinkle: vec4<f32>,
+    // Painted borders: lips, brow height, hair, brow half-width.
+    @location(4) paint: vec4<f32>,
+};
+
+@vertex
+fn vs_face(
+    @location(0) pos: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) color: vec4<f32>,
+    @location(3) wrinkle: vec4<f32>,
+    @location(4) paint: vec4<f32>,
+) -> FaceOut {
+    var o: FaceOut;
+    let w = inst.model * vec4<f32>(pos, 1.0);
+    o.clip = g.view_proj * w;
+    o.world = w.xyz;
+    o.normal = (inst.normal * vec4<f32>(normal, 0.0)).xyz;
+    o.color = color;
+    o.wrinkle = wrinkle;
+    o.paint = paint;
     return o;
 }
 
@@ -83,6 +108,114 @@ fn eye_colour(local: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(0.92, 0.90, 0.86);
 }
 
+// Skin: light wraps past the terminator (scattered under the surface)
+// and reddens there; a weak, broad sheen instead of a plastic highlight;
+// a faint rim where the skin turns away. `shade` darkens the diffuse part
+// (wrinkles' furrows).
+fn skin(base: vec3<f32>, n: vec3<f32>, view_dir: vec3<f32>, shade: f32) -> vec3<f32> {
+    let key = normalize(-g.key_dir.xyz);
+    let fill = normalize(-g.fill_dir.xyz);
+    let h = normalize(key + view_dir);
+    let wrap = 0.45;
+    let kd = max((dot(n, key) + wrap) / (1.0 + wrap), 0.0);
+    let fd = max((dot(n, fill) + wrap) / (1.0 + wrap), 0.0);
+    let scatter = vec3<f32>(1.0, 0.55, 0.45) * 0.18 * kd * (1.0 - kd) * 4.0;
+    let r = 1.0 - max(dot(n, view_dir), 0.0);
+    let rim = r * r * r * 0.12;
+    let c2 = max(dot(n, h), 0.0) * max(dot(n, h), 0.0);
+    let c4 = c2 * c2;
+    let sheen = 0.06 * c4 * c4 * c4;
+    let lit = (base * (0.20 + 0.80 * kd + 0.30 * fd) + base * scatter) * shade + vec3<f32>(sheen + rim * 0.5);
+    return lit;
+}
+
+// A skinned body: skin light and one painted border, `paint.x` the
+// signed distance inside it (its soft half-widths) and `paint.yzw` the
+// colour there (the bare skin inside the vest's neckline and armholes).
+struct BodyOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) color: vec4<f32>,
+    @location(3) paint: vec4<f32>,
+};
+
+@vertex
+fn vs_body(
+    @location(0) pos: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) color: vec4<f32>,
+    @location(4) paint: vec4<f32>,
+) -> BodyOut {
+    var o: BodyOut;
+    let w = inst.model * vec4<f32>(pos, 1.0);
+    o.clip = g.view_proj * w;
+    o.world = w.xyz;
+    o.normal = (inst.normal * vec4<f32>(normal, 0.0)).xyz;
+    o.color = color;
+    o.paint = paint;
+    return o;
+}
+
+@fragment
+fn fs_body(v: BodyOut) -> @location(0) vec4<f32> {
+    let view_dir = normalize(g.camera.xyz - v.world);
+    let n = normalize(v.normal);
+    let aa = max(fwidth(v.paint.x), 1.0);
+    let base = mix(inst.color.rgb * v.color.rgb, v.paint.yzw, smoothstep(-aa, aa, v.paint.x));
+    return vec4<f32>(skin(base, n, view_dir, 1.0), 1.0);
+}
+
+// The face: skin with its painted borders and expression wrinkles.
+@fragment
+fn fs_face(v: FaceOut) -> @location(0) vec4<f32> {
+    let view_dir = normalize(g.camera.xyz - v.world);
+    var n = normalize(v.normal);
+    if (dot(n, view_dir) < 0.0) {
+        n = -n;
+    }
+    var base = inst.color.rgb * v.color.rgb;
+    // Painted borders (face/appearance.rs): each region covers
+    // where its interpolated signed distance is positive, blended
+    // over its soft border or one pixel, whichever is wider.
+    let inside = vec3<f32>(v.paint.x, v.paint.w - abs(v.paint.y), v.paint.z);
+    let aa = max(fwidth(inside), vec3<f32>(1.0));
+    let cover = smoothstep(-aa, aa, inside);
+    base = mix(base, g.face_regions[0].rgb, cover.x);
+    base = mix(base, g.face_regions[1].rgb, cover.y);
+    base = mix(base, g.face_regions[2].rgb, cover.z);
+    // Expression wrinkles (docs/model/face.md W1-W3): two families of
+    // lines, across the face's vertical axis (phase y / L) and across
+    // its horizontal one (x / L), each of height A cos(2 pi phase), so
+    // the normal tilts by slope sin(2 pi phase) along the axis; their
+    // furrows are shadowed. Where a wavelength covers under about three
+    // pixels the lines would alias: they fade into their mean
+    // brightness instead, the furrows' mean shadow times the mean
+    // cosine of the tilted normals (about 1 / sqrt(1 + s^2 / 2)), so a
+    // wrinkled brow stays as dark far away as close up (the filtering
+    // rule of Toksvig 2005, "Mipmapping normal maps").
+    var furrow = 0.0;
+    var tilt = 1.0;
+    if (v.wrinkle.x + v.wrinkle.y > 1e-4) {
+        let ax = (inst.model * vec4<f32>(1.0, 0.0, 0.0, 0.0)).xyz;
+        let ay = (inst.model * vec4<f32>(0.0, 1.0, 0.0, 0.0)).xyz;
+        let dx = normalize(ax - n * dot(ax, n));
+        let dy = normalize(ay - n * dot(ay, n));
+        let rx = clamp((0.33 - fwidth(v.wrinkle.z)) * 6.0, 0.0, 1.0);
+        let ry = clamp((0.33 - fwidth(v.wrinkle.w)) * 6.0, 0.0, 1.0);
+        let px = 6.2831853 * v.wrinkle.z;
+        let py = 6.2831853 * v.wrinkle.w;
+        n = normalize(n + dx * (v.wrinkle.x * sin(px) * rx) + dy * (v.wrinkle.y * sin(py) * ry));
+        let vx = 0.25 * (1.0 - cos(px)) * (1.0 - cos(px));
+        let vy = 0.25 * (1.0 - cos(py)) * (1.0 - cos(py));
+        tilt = mix(inverseSqrt(1.0 + 0.5 * v.wrinkle.x * v.wrinkle.x), 1.0, rx)
+            * mix(inverseSqrt(1.0 + 0.5 * v.wrinkle.y * v.wrinkle.y), 1.0, ry);
+        furrow = min(v.wrinkle.x, 1.0) * mix(0.27, vx * vx, rx)
+            + min(v.wrinkle.y, 1.0) * mix(0.27, vy * vy, ry);
+    }
+    return vec4<f32>(skin(base, n, view_dir, (1.0 - 0.45 * furrow) * tilt), 1.0);
+}
+
 @fragment
 fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
     let material = u32(inst.params.x + 0.5);
@@ -106,62 +239,8 @@ fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
     let key = normalize(-g.key_dir.xyz);
     let fill = normalize(-g.fill_dir.xyz);
     let h = normalize(key + view_dir);
-    if (material >= 3u) {
-        // Expression wrinkles (docs/model/face.md W1-W3): two families of
-        // lines, across the face's vertical axis (phase y / L) and across
-        // its horizontal one (x / L), each of height A cos(2 pi phase), so
-        // the normal tilts by slope sin(2 pi phase) along the axis; their
-        // furrows are shadowed. Where a wavelength covers under about three
-        // pixels the lines would alias: they fade into their mean
-        // brightness instead, the furrows' mean shadow times the mean
-        // cosine of the tilted normals (about 1 / sqrt(1 + s^2 / 2)), so a
-        // wrinkled brow stays as dark far away as close up (the filtering
-        // rule of Toksvig 2005, "Mipmapping normal maps").
-        var furrow = 0.0;
-        var tilt = 1.0;
-        if (material == 4u && v.wrinkle.x + v.wrinkle.y > 1e-4) {
-            let ax = (inst.model * vec4<f32>(1.0, 0.0, 0.0, 0.0)).xyz;
-            let ay = (inst.model * vec4<f32>(0.0, 1.0, 0.0, 0.0)).xyz;
-            let dx = normalize(ax - n * dot(ax, n));
-            let dy = normalize(ay - n * dot(ay, n));
-            let rx = clamp((0.33 - fwidth(v.wrinkle.z)) * 6.0, 0.0, 1.0);
-            let ry = clamp((0.33 - fwidth(v.wrinkle.w)) * 6.0, 0.0, 1.0);
-            let px = 6.2831853 * v.wrinkle.z;
-            let py = 6.2831853 * v.wrinkle.w;
-            n = normalize(n + dx * (v.wrinkle.x * sin(px) * rx) + dy * (v.wrinkle.y * sin(py) * ry));
-            let vx = 0.25 * (1.0 - cos(px)) * (1.0 - cos(px));
-            let vy = 0.25 * (1.0 - cos(py)) * (1.0 - cos(py));
-            tilt = mix(inverseSqrt(1.0 + 0.5 * v.wrinkle.x * v.wrinkle.x), 1.0, rx)
-                * mix(inverseSqrt(1.0 + 0.5 * v.wrinkle.y * v.wrinkle.y), 1.0, ry);
-            furrow = min(v.wrinkle.x, 1.0) * mix(0.27, vx * vx, rx)
-                + min(v.wrinkle.y, 1.0) * mix(0.27, vy * vy, ry);
-        }
-        if (material == 4u) {
-            // Painted borders (face/appearance.rs): each region covers
-            // where its interpolated signed distance is positive, blended
-            // over its soft border or one pixel, whichever is wider.
-            let inside = vec3<f32>(v.paint.x, v.paint.w - abs(v.paint.y), v.paint.z);
-            let aa = max(fwidth(inside), vec3<f32>(1.0));
-            let cover = smoothstep(-aa, aa, inside);
-            base = mix(base, g.face_regions[0].rgb, cover.x);
-            base = mix(base, g.face_regions[1].rgb, cover.y);
-            base = mix(base, g.face_regions[2].rgb, cover.z);
-        }
-        // Skin: light wraps past the terminator (scattered under the
-        // surface) and reddens there; a weak, broad sheen instead of a
-        // plastic highlight; a faint rim where the skin turns away.
-        let wrap = 0.45;
-        let kd = max((dot(n, key) + wrap) / (1.0 + wrap), 0.0);
-        let fd = max((dot(n, fill) + wrap) / (1.0 + wrap), 0.0);
-        let scatter = vec3<f32>(1.0, 0.55, 0.45) * 0.18 * kd * (1.0 - kd) * 4.0;
-        let r = 1.0 - max(dot(n, view_dir), 0.0);
-        let rim = r * r * r * 0.12;
-        let c2 = max(dot(n, h), 0.0) * max(dot(n, h), 0.0);
-        let c4 = c2 * c2;
-        let sheen = 0.06 * c4 * c4 * c4;
-        let shade = (1.0 - 0.45 * furrow) * tilt;
-        let lit = (base * (0.20 + 0.80 * kd + 0.30 * fd) + base * scatter) * shade + vec3<f32>(sheen + rim * 0.5);
-        return vec4<f32>(lit, 1.0);
+    if (material == 3u) {
+        return vec4<f32>(skin(base, n, view_dir, 1.0), 1.0);
     }
     if (material == 1u) {
         base = eye_colour(v.local);
