@@ -32,6 +32,8 @@ pub struct FaceStyle {
     pub lashes: [f32; 3],
     /// Cheek flush (mixed into the skin over the cheekbones).
     pub flush: [f32; 3],
+    /// The inside of the mouth.
+    pub inside: [f32; 3],
 }
 
 impl Default for FaceStyle {
@@ -46,9 +48,10 @@ impl FaceStyle {
         skin: [0.62, 0.40, 0.30],
         hair: [0.035, 0.025, 0.02],
         brow: [0.05, 0.032, 0.024],
-        lips: [0.44, 0.16, 0.15],
+        lips: [0.47, 0.20, 0.18],
         lashes: [0.02, 0.015, 0.015],
         flush: [0.66, 0.30, 0.26],
+        inside: [0.05, 0.012, 0.012],
     };
 }
 
@@ -70,7 +73,21 @@ const HAIRLINE: [(f32, f32); 9] = [
 /// Half-width of each region's soft border, m: the vermilion's border is
 /// sharp, a brow's hairs thin out over a millimetre or so, the hairline
 /// over more.
-const SOFT: [f32; 3] = [0.0008, 0.0013, 0.0015];
+const SOFT: [f32; 3] = [0.0012, 0.0013, 0.0015];
+
+/// The lips' colour reaches at least this far from the mouth's opening, m:
+/// the opening's edge is lip all round, even at the corners, where the
+/// vermilion's band narrows to nothing but a wide-open mouth stretches
+/// the skin beside it into the opening.
+const MOUTH_EDGE: f32 = 0.0025;
+
+/// Distance from `p` to the nearest of `points`.
+fn distance(p: Vec3, points: &[Vec3]) -> f32 {
+    points
+        .iter()
+        .map(|q| q.distance(p))
+        .fold(f32::MAX, f32::min)
+}
 
 /// A point's place against the painted borders, in units of each
 /// border's soft half-width: the signed distance inside the lips, the
@@ -150,7 +167,7 @@ fn brow(p: Vec3, l: &Landmarks, min_half: f32) -> (f32, f32) {
 fn lips(p: Vec3, l: &Landmarks) -> f32 {
     let half_w = l.mouth_corner.x;
     let u = (p.x / half_w).abs().min(1.0);
-    let taper = (1.0 - u * u).powf(0.3);
+    let taper = (1.0 - u * u).powf(0.4);
     let bow =
         1.0 + 0.18 * (-((u - 0.28) / 0.12).powi(2)).exp() - 0.15 * (-(u / 0.08).powi(2)).exp();
     let top = dims::MOUTH_Y + (l.upper_lip.y - dims::MOUTH_Y + 0.0025) * taper * bow;
@@ -164,10 +181,7 @@ fn lips(p: Vec3, l: &Landmarks) -> f32 {
 /// How dark the lash line is at the point (0..1): within a millimetre or
 /// two of a lid rim, the upper one darker.
 fn lashes(p: Vec3, upper: &[Vec3], lower: &[Vec3]) -> f32 {
-    let near = |rim: &[Vec3], width: f32| {
-        let d = rim.iter().map(|r| r.distance(p)).fold(f32::MAX, f32::min);
-        smooth(width, width * 0.4, d)
-    };
+    let near = |rim: &[Vec3], width: f32| smooth(width, width * 0.4, distance(p, rim));
     near(upper, 0.0022).max(0.45 * near(lower, 0.0013))
 }
 
@@ -216,6 +230,11 @@ pub fn paint(mesh: &HeadMesh, style: &FaceStyle) -> Paint {
             .collect()
     };
     let (upper, lower) = (rim(&mesh.rims.upper_lid), rim(&mesh.rims.lower_lid));
+    let mouth: Vec<Vec3> = [&mesh.rims.upper_lip, &mesh.rims.lower_lip]
+        .into_iter()
+        .flatten()
+        .map(|&i| mesh.positions[i as usize])
+        .collect();
     let spacing = edge_length(mesh);
     let colours = mesh
         .positions
@@ -233,7 +252,7 @@ pub fn paint(mesh: &HeadMesh, style: &FaceStyle) -> Paint {
         .map(|(&p, spacing)| {
             let (height, half) = brow(p, l, 0.5 * spacing);
             [
-                lips(p, l) / SOFT[0],
+                lips(p, l).max(MOUTH_EDGE - distance(p, &mouth)) / SOFT[0],
                 height / SOFT[1],
                 hair(p) / SOFT[2],
                 half / SOFT[1],
@@ -248,39 +267,39 @@ mod tests {
     use super::*;
     use crate::face::mesh::{MeshParams, mirror};
 
-    /// Each region lands where its landmark says, and only there: the
-    /// vertex nearest each landmark is inside the region (and no other);
-    /// the nose tip, the chin and the forehead are in none.
+    /// Each region lands where its landmark says, and only there: each
+    /// landmark is inside its region (and no other); the nose tip, the
+    /// chin and the forehead are in none. And `paint` gives every vertex
+    /// exactly these values, in soft half-widths.
     #[test]
     fn regions_sit_on_their_landmarks() {
-        for rows in [32, 64] {
-            let mesh = HeadMesh::generate(MeshParams { rows });
-            let paint = paint(&mesh, &FaceStyle::default());
-            let at = |p: Vec3| {
-                let i = (0..mesh.positions.len())
-                    .min_by(|&a, &b| {
-                        mesh.positions[a]
-                            .distance(p)
-                            .total_cmp(&mesh.positions[b].distance(p))
-                    })
-                    .expect("vertices");
-                let r = paint.regions[i];
-                [r[0] > 0.0, r[3] - r[1].abs() > 0.0, r[2] > 0.0]
-            };
-            let l = &mesh.landmarks;
-            let (lips, brow, hair) = (
-                [true, false, false],
-                [false, true, false],
-                [false, false, true],
-            );
-            assert_eq!(at(l.brow_mid), brow, "rows {rows}");
-            assert_eq!(at(mirror(l.brow_mid)), brow);
-            assert_eq!(at(l.upper_lip), lips);
-            assert_eq!(at(l.lower_lip), lips);
-            assert_eq!(at(Vec3::new(0.0, dims::TOP_Y, dims::Z_C)), hair);
-            for skin in [l.nose_tip, l.chin, l.forehead_mid] {
-                assert_eq!(at(skin), [false; 3]);
-            }
+        let mesh = HeadMesh::generate(MeshParams { rows: 48 });
+        let l = &mesh.landmarks;
+        let at = |p: Vec3| {
+            let (height, half) = brow(p, l, 0.0);
+            [lips(p, l) > 0.0, height.abs() < half, hair(p) > 0.0]
+        };
+        let (lips_, brow_, hair_) = (
+            [true, false, false],
+            [false, true, false],
+            [false, false, true],
+        );
+        assert_eq!(at(l.brow_mid), brow_);
+        assert_eq!(at(mirror(l.brow_mid)), brow_);
+        assert_eq!(at(l.upper_lip), lips_);
+        assert_eq!(at(l.lower_lip), lips_);
+        assert_eq!(at(Vec3::new(0.0, dims::TOP_Y, dims::Z_C)), hair_);
+        for skin in [l.nose_tip, l.chin, l.forehead_mid] {
+            assert_eq!(at(skin), [false; 3], "{skin}");
+        }
+        let painted = paint(&mesh, &FaceStyle::default());
+        let spacing = edge_length(&mesh);
+        for (i, &p) in mesh.positions.iter().enumerate().step_by(97) {
+            let (height, half) = brow(p, l, 0.5 * spacing[i]);
+            let r = painted.regions[i];
+            assert!((r[1] * SOFT[1] - height).abs() < 1e-6 && (r[3] * SOFT[1] - half).abs() < 1e-6);
+            assert!((r[2] * SOFT[2] - hair(p)).abs() < 1e-6);
+            assert!(r[0] * SOFT[0] >= lips(p, l) - 1e-6);
         }
     }
 

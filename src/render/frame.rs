@@ -214,7 +214,10 @@ fn posed(mesh: &BodyMesh, pose: &Pose) -> Vec<Vertex> {
 }
 
 /// Inside of the mouth, and teeth.
-const MOUTH: [f32; 4] = [0.05, 0.012, 0.012, 1.0];
+const MOUTH: [f32; 4] = {
+    let c = crate::face::appearance::FaceStyle::DEFAULT.inside;
+    [c[0], c[1], c[2], 1.0]
+};
 const TEETH: [f32; 4] = [0.80, 0.78, 0.70, 1.0];
 const HAIR: [f32; 4] = {
     let h = crate::face::appearance::FaceStyle::DEFAULT.hair;
@@ -512,7 +515,7 @@ fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
         let half_d = 0.026;
         ellipsoid(
             Vec3::new(0.0, (upper.y + lower.y) / 2.0, front - half_d),
-            Vec3::new(w * 1.3, 0.014 + gap * 0.5, half_d),
+            Vec3::new(w * 1.6, 0.02 + gap * 0.6, half_d),
             MOUTH,
         )
     };
