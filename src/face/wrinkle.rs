@@ -11,11 +11,11 @@
 //! crow's feet when the orbital orbicularis squeezes: no line is placed by
 //! hand and none belongs to an emotion.
 //!
-//! [`Wrinkles::measure`] compares the deformed mesh with its rest shape
-//! and gives each vertex its compression direction, the slope of the
-//! buckles that take it up, and their phase; the renderer bends the shading
-//! normal with them per pixel (`render/shader.wgsl`), so the lines are finer
-//! than the mesh.
+//! [`measure`] compares the deformed mesh with its rest shape and gives
+//! each vertex the slope of the lines that take up its compression along
+//! the face's two axes, and their phases; the renderer bends the shading
+//! normal with them per pixel (`render/shader.wgsl`), so the lines are
+//! finer than the mesh.
 
 use super::mesh::HeadMesh;
 use glam::{IVec3, Mat2, Vec2, Vec3};

@@ -137,7 +137,7 @@ pub struct Frame {
     /// ([`MeshKey::Lashes`]).
     pub lashes: Vec<Vertex>,
     /// The VH's posed body, world frame ([`MeshKey::Body`], indexed by
-    /// [`Looks::indices`]).
+    /// `Looks::indices`).
     pub body: Vec<Vertex>,
     /// Your posed body, world frame ([`MeshKey::Avatar`], indexed by
     /// [`Frame::avatar_indices`]).
@@ -145,7 +145,7 @@ pub struct Frame {
     /// Which of your body's triangles to draw: all of it, or the arms
     /// alone from your own eyes.
     pub avatar_indices: AvatarPart,
-    /// The body plan the bodies were posed on ([`Looks::of`] gives their
+    /// The body plan the bodies were posed on (`Looks::of` gives their
     /// triangles).
     pub plan: BodyPlan,
     /// Overlay lines (pairs of vertices).

@@ -202,7 +202,7 @@ impl Blit {
         }
     }
 
-    /// What [`Blit::draw`] needs to draw `renderer`'s last picture (none
+    /// What `Blit::draw` needs to draw `renderer`'s last picture (none
     /// before the first render).
     pub fn bind(&self, renderer: &Renderer) -> Option<BlitBind> {
         let target = renderer.target.as_ref()?;
