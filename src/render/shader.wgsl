@@ -210,10 +210,10 @@ fn fs_face(v: FaceOut) -> @location(0) vec4<f32> {
         let vy = 0.25 * (1.0 - cos(py)) * (1.0 - cos(py));
         tilt = mix(inverseSqrt(1.0 + 0.5 * v.wrinkle.x * v.wrinkle.x), 1.0, rx)
             * mix(inverseSqrt(1.0 + 0.5 * v.wrinkle.y * v.wrinkle.y), 1.0, ry);
-        furrow = min(v.wrinkle.x, 1.0) * mix(0.27, vx * vx, rx)
-            + min(v.wrinkle.y, 1.0) * mix(0.27, vy * vy, ry);
+        furrow = min(v.wrinkle.x, 1.0) * mix(0.375, vx, rx)
+            + min(v.wrinkle.y, 1.0) * mix(0.375, vy, ry);
     }
-    return vec4<f32>(skin(base, n, view_dir, (1.0 - 0.45 * furrow) * tilt), 1.0);
+    return vec4<f32>(skin(base, n, view_dir, (1.0 - 0.33 * furrow) * tilt), 1.0);
 }
 
 @fragment
