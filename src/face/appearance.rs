@@ -15,6 +15,8 @@
 
 use glam::{Vec2, Vec3};
 
+use crate::util::math::smoothstep;
+
 use super::mesh::{HeadMesh, Landmarks, dims};
 
 /// The colours of a face (linear RGB).
@@ -98,11 +100,6 @@ fn distance(p: Vec3, points: &[Vec3]) -> f32 {
 /// `smoothstep(-1, 1, u)` widened to a pixel where a pixel is wider.
 pub type Regions = [f32; 4];
 
-fn smooth(edge0: f32, edge1: f32, x: f32) -> f32 {
-    let t = ((x - edge0) / (edge1 - edge0)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
-}
-
 fn mix(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {
     [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * t)
 }
@@ -181,7 +178,7 @@ fn lips(p: Vec3, l: &Landmarks) -> f32 {
 /// How dark the lash line is at the point (0..1): within a millimetre or
 /// two of a lid rim, the upper one darker.
 fn lashes(p: Vec3, upper: &[Vec3], lower: &[Vec3]) -> f32 {
-    let near = |rim: &[Vec3], width: f32| smooth(width, width * 0.4, distance(p, rim));
+    let near = |rim: &[Vec3], width: f32| smoothstep(width, width * 0.4, distance(p, rim));
     near(upper, 0.0022).max(0.45 * near(lower, 0.0013))
 }
 
@@ -189,7 +186,7 @@ fn lashes(p: Vec3, upper: &[Vec3], lower: &[Vec3]) -> f32 {
 fn flush(p: Vec3, l: &Landmarks) -> f32 {
     let c = l.cheekbone + Vec3::new(-0.012, -0.012, 0.006);
     let d = Vec2::new(p.x.abs() - c.x, p.y - c.y).length();
-    0.35 * smooth(0.024, 0.0, d) * smooth(-0.03, 0.0, p.z - c.z)
+    0.35 * smoothstep(0.024, 0.0, d) * smoothstep(-0.03, 0.0, p.z - c.z)
 }
 
 /// Each vertex's mean edge length (the mesh's local resolution), m.

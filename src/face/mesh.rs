@@ -19,6 +19,7 @@
 //! the eyeball centres (at (+/-0.03095, 0, 0)).
 
 use super::muscle::lid_margin;
+use crate::util::math::{gauss, smoothstep};
 use glam::Vec3;
 use std::collections::HashMap;
 
@@ -141,15 +142,6 @@ pub struct HeadMesh {
     pub rims: Rims,
     /// Vertices of each eye's lid shell zone (kept outside the eyeball).
     pub lid_zone: [Vec<u32>; 2],
-}
-
-fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
-    let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
-}
-
-fn gauss(d: f32, s: f32) -> f32 {
-    (-(d / s) * (d / s)).exp()
 }
 
 /// Cubic Hermite (Catmull-Rom tangents) interpolation through knots given

@@ -23,6 +23,8 @@
 
 use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
 
+use crate::face::mesh::compute_normals;
+use crate::util::math::{gauss, smoothstep};
 use glam::{Mat4, Quat, Vec3};
 
 use super::geometry::Vertex;
@@ -256,15 +258,6 @@ impl Builder {
 
 fn ring(cols: usize, f: impl Fn(f32) -> Pt) -> Vec<Pt> {
     (0..cols).map(|j| f(TAU * j as f32 / cols as f32)).collect()
-}
-
-fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
-    let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
-}
-
-fn gauss(d: f32, s: f32) -> f32 {
-    (-(d / s) * (d / s)).exp()
 }
 
 /// Cubic Hermite interpolation (finite-difference tangents) of column
@@ -606,16 +599,10 @@ impl BodyMesh {
             arm(&mut b, plan, style, side);
             glove(&mut b, plan, style, side);
         }
-        let mut normals = vec![Vec3::ZERO; b.verts.len()];
-        for t in b.all.as_chunks::<3>().0 {
-            let p = t.map(|i| Vec3::from_array(b.verts[i as usize].pos));
-            let n = (p[1] - p[0]).cross(p[2] - p[0]);
-            for &i in t {
-                normals[i as usize] += n;
-            }
-        }
+        let positions: Vec<Vec3> = b.verts.iter().map(|v| Vec3::from_array(v.pos)).collect();
+        let normals = compute_normals(&positions, b.all.as_chunks::<3>().0);
         for (v, n) in b.verts.iter_mut().zip(normals) {
-            v.normal = n.normalize_or(Vec3::Y).to_array();
+            v.normal = n.to_array();
         }
         BodyMesh {
             vertices: b.verts,

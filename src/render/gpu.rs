@@ -431,9 +431,9 @@ impl Renderer {
         let closed_pipeline = mesh("vs_mesh", "fs_mesh", Some(wgpu::Face::Back));
         // The face (an open mesh) has its own shaders: wrinkles and painted
         // borders, which no other mesh pays for.
-        let face_pipeline = mesh("vs_face", "fs_face", None);
+        let face_pipeline = mesh("vs_painted", "fs_face", None);
         // The skinned bodies (closed) likewise: the vest's hem.
-        let body_pipeline = mesh("vs_body", "fs_body", Some(wgpu::Face::Back));
+        let body_pipeline = mesh("vs_painted", "fs_body", Some(wgpu::Face::Back));
         // Overlays are drawn over everything so rays inside the head show.
         let line_pipeline = pipeline(
             "vs_line",

@@ -49,29 +49,31 @@ fn vs_mesh(
     return o;
 }
 
-// The face has its own entry points, so no other mesh pays for its
-// wrinkles and painted borders (a software rasteriser runs a shader's
-// every instruction for every pixel it covers).
-struct FaceOut {
+// The face and the skinned bodies have their own entry points, so no other
+// mesh pays for wrinkles and painted borders (a software rasteriser runs a
+// shader's every instruction for every pixel it covers). One vertex stage
+// serves both.
+struct PaintedOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) color: vec4<f32>,
-    // Wrinkles: slopes across x and y, phases along x and y.
+    // Face wrinkles: slopes across x and y, phases along x and y.
     @location(3) wrinkle: vec4<f32>,
-    // Painted borders: lips, brow height, hair, brow half-width.
+    // Face: lips, brow height, hair, brow half-width. Body: the signed
+    // distance inside one border and the colour there.
     @location(4) paint: vec4<f32>,
 };
 
 @vertex
-fn vs_face(
+fn vs_painted(
     @location(0) pos: vec3<f32>,
     @location(1) normal: vec3<f32>,
     @location(2) color: vec4<f32>,
     @location(3) wrinkle: vec4<f32>,
     @location(4) paint: vec4<f32>,
-) -> FaceOut {
-    var o: FaceOut;
+) -> PaintedOut {
+    var o: PaintedOut;
     let w = inst.model * vec4<f32>(pos, 1.0);
     o.clip = g.view_proj * w;
     o.world = w.xyz;
@@ -132,33 +134,8 @@ fn skin(base: vec3<f32>, n: vec3<f32>, view_dir: vec3<f32>, shade: f32) -> vec3<
 // A skinned body: skin light and one painted border, `paint.x` the
 // signed distance inside it (its soft half-widths) and `paint.yzw` the
 // colour there (the bare skin inside the vest's neckline and armholes).
-struct BodyOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) world: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) color: vec4<f32>,
-    @location(3) paint: vec4<f32>,
-};
-
-@vertex
-fn vs_body(
-    @location(0) pos: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) color: vec4<f32>,
-    @location(4) paint: vec4<f32>,
-) -> BodyOut {
-    var o: BodyOut;
-    let w = inst.model * vec4<f32>(pos, 1.0);
-    o.clip = g.view_proj * w;
-    o.world = w.xyz;
-    o.normal = (inst.normal * vec4<f32>(normal, 0.0)).xyz;
-    o.color = color;
-    o.paint = paint;
-    return o;
-}
-
 @fragment
-fn fs_body(v: BodyOut) -> @location(0) vec4<f32> {
+fn fs_body(v: PaintedOut) -> @location(0) vec4<f32> {
     let view_dir = normalize(g.camera.xyz - v.world);
     let n = normalize(v.normal);
     let aa = max(fwidth(v.paint.x), 1.0);
@@ -168,7 +145,7 @@ fn fs_body(v: BodyOut) -> @location(0) vec4<f32> {
 
 // The face: skin with its painted borders and expression wrinkles.
 @fragment
-fn fs_face(v: FaceOut) -> @location(0) vec4<f32> {
+fn fs_face(v: PaintedOut) -> @location(0) vec4<f32> {
     let view_dir = normalize(g.camera.xyz - v.world);
     var n = normalize(v.normal);
     if (dot(n, view_dir) < 0.0) {
