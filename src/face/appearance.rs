@@ -167,8 +167,9 @@ fn lips(p: Vec3, l: &Landmarks) -> f32 {
     let taper = (1.0 - u * u).powf(0.4);
     let bow =
         1.0 + 0.18 * (-((u - 0.28) / 0.12).powi(2)).exp() - 0.15 * (-(u / 0.08).powi(2)).exp();
-    let top = dims::MOUTH_Y + (l.upper_lip.y - dims::MOUTH_Y + 0.0025) * taper * bow;
-    let bottom = dims::MOUTH_Y - (dims::MOUTH_Y - l.lower_lip.y + 0.0035) * taper;
+    let mouth_y = l.mouth_centre.y;
+    let top = mouth_y + (l.upper_lip.y - mouth_y + 0.0025) * taper * bow;
+    let bottom = mouth_y - (mouth_y - l.lower_lip.y + 0.0035) * taper;
     (top - p.y)
         .min(p.y - bottom)
         .min(half_w - p.x.abs())

@@ -23,8 +23,6 @@ pub struct Face {
     /// lips, brows and hair on the rest vertices
     /// ([`super::appearance::paint`]).
     pub paint: super::appearance::Paint,
-    /// The colours [`Face::paint`] was painted with.
-    pub style: super::appearance::FaceStyle,
     /// Rest frames for measuring the skin's compression (wrinkles).
     pub wrinkle_basis: super::wrinkle::WrinkleBasis,
 }
@@ -39,15 +37,13 @@ impl Face {
     /// Build the rig on a given mesh (generated or imported, see `exchange.rs`).
     pub fn from_mesh(mesh: HeadMesh, params: FaceParams) -> Face {
         let rig = Rig::build(&mesh, &params);
-        let style = super::appearance::FaceStyle::default();
-        let paint = super::appearance::paint(&mesh, &style);
+        let paint = super::appearance::paint(&mesh, &super::appearance::FaceStyle::DEFAULT);
         let wrinkle_basis = super::wrinkle::WrinkleBasis::new(&mesh, &params.skin);
         Face {
             mesh,
             params,
             rig,
             paint,
-            style,
             wrinkle_basis,
         }
     }

@@ -131,8 +131,6 @@ pub struct Frame {
     pub draws: Vec<Draw>,
     /// Deformed face vertices in the face frame (drawn with [`MeshKey::Face`]).
     pub face: Vec<Vertex>,
-    /// The colours the face's painted regions are drawn in.
-    pub face_style: crate::face::appearance::FaceStyle,
     /// Eyelashes on the deformed lid rims, face frame, a triangle list
     /// ([`MeshKey::Lashes`]).
     pub lashes: Vec<Vertex>,
@@ -371,7 +369,6 @@ impl Frame {
             camera,
             draws,
             face,
-            face_style: sim.model().face.style,
             lashes,
             body,
             avatar,

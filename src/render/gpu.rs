@@ -629,7 +629,7 @@ impl Renderer {
             fill_dir: fill.extend(0.0).to_array(),
             floor_light: [floor_light, 0.0, 0.0, 0.0],
             face_regions: {
-                let s = &frame.face_style;
+                let s = &crate::face::appearance::FaceStyle::DEFAULT;
                 [s.lips, s.brow, s.hair].map(|c| [c[0], c[1], c[2], 1.0])
             },
         };
