@@ -318,5 +318,23 @@ mod tests {
         assert!(e.contains("close_s"), "the field is named: {e}");
         let bad = DEFAULT_RON.replace("rf_ratio: 1.3)", "rf_ratio: 0.9)");
         assert!(FaceParams::from_ron(&bad).is_err());
+        // A wrinkle spacing in millimetres, not metres.
+        let with_skin = |spacing: &str| {
+            let end = DEFAULT_RON
+                .trim_end()
+                .strip_suffix(')')
+                .expect("a RON struct");
+            format!(
+                "{end}    skin: (wrinkle_spacing_m: {spacing}, wrinkle_onset_strain: 0.25),\n)\n"
+            )
+        };
+        assert!(FaceParams::from_ron(&with_skin("0.006")).is_ok());
+        let e = FaceParams::from_ron(&with_skin("6.0"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("wrinkle_spacing_m") && e.contains("must be in"),
+            "{e}"
+        );
     }
 }

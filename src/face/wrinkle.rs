@@ -27,8 +27,10 @@ use std::collections::HashMap;
 pub struct SkinParams {
     /// Spacing of the expression lines, metres. Our choice, 6 mm: a
     /// raised adult forehead shows four to six lines over its 4-5 cm,
-    /// frown and nose lines are as close or closer. 0 turns wrinkles off.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// frown and nose lines are as close or closer. 0 turns wrinkles off;
+    /// at most 3 cm (a spacing given in millimetres would make every
+    /// vertex average the whole face).
+    #[serde(deserialize_with = "wrinkle_spacing")]
     pub wrinkle_spacing_m: f64,
     /// Compressive strain the skin takes up without buckling (living skin
     /// is stretched over it at rest, and the fat under it thickens and
@@ -39,6 +41,13 @@ pub struct SkinParams {
     #[serde(deserialize_with = "crate::util::check::unit_interval")]
     pub wrinkle_onset_strain: f64,
 }
+
+fn wrinkle_spacing<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    crate::util::check::in_range(d, 0.0, MAX_SPACING_M)
+}
+
+/// Widest line spacing a database may give, m.
+const MAX_SPACING_M: f64 = 0.03;
 
 impl Default for SkinParams {
     fn default() -> Self {
