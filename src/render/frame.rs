@@ -47,15 +47,12 @@ pub enum MeshKey {
 
 impl MeshKey {
     /// Whether the mesh is closed and wound counter-clockwise seen from
-    /// outside, so its back faces can be skipped.
+    /// outside, so its back faces can be skipped (the skinned bodies are
+    /// too, and their own pipeline skips them: [`Material::Body`]).
     pub fn is_closed(self) -> bool {
         matches!(
             self,
-            MeshKey::Sphere
-                | MeshKey::Cube
-                | MeshKey::Capsule { .. }
-                | MeshKey::Body
-                | MeshKey::Avatar
+            MeshKey::Sphere | MeshKey::Cube | MeshKey::Capsule { .. }
         )
     }
 }
@@ -73,7 +70,8 @@ pub enum Material {
     Skin = 3,
     /// The face: skin with its painted borders and wrinkles.
     Face = 4,
-    /// A skinned body: skin light, one painted border (the vest's hem).
+    /// A skinned body (closed; its back faces are skipped): skin light,
+    /// one painted border (the vest's hem).
     Body = 5,
 }
 
@@ -318,16 +316,15 @@ impl Frame {
             });
         }
         let (head_p, head_q) = w.pose(seg::HEAD);
+        let face_frame = Mat4::from_rotation_translation(head_q, head_p)
+            * Mat4::from_translation(face_offset(&w.plan));
         draws.push(Draw {
             mesh: MeshKey::Face,
-            model: Mat4::from_rotation_translation(head_q, head_p)
-                * Mat4::from_translation(face_offset(&w.plan)),
+            model: face_frame,
             color: WHITE,
             material: Material::Face,
         });
         let face = face_vertices(sim);
-        let face_frame = Mat4::from_rotation_translation(head_q, head_p)
-            * Mat4::from_translation(face_offset(&w.plan));
         draws.extend(mouth(sim, &face, face_frame));
         let lashes = lashes(&sim.model().face.mesh.rims, &face);
         // Ears, rooted in the head just in front of where the face mesh's

@@ -18,7 +18,8 @@ struct Instance {
     // Inverse transpose of the model's upper 3x3, in a mat4 for alignment.
     normal: mat4x4<f32>,
     color: vec4<f32>,
-    // x: material (0 plain, 1 eye, 2 floor, 3 skin, 4 face: fs_face).
+    // x: material (0 plain, 1 eye, 2 floor, 3 skin; 4 face and 5 body have
+    // their own fragment stages, fs_face and fs_body).
     params: vec4<f32>,
 };
 
@@ -212,13 +213,13 @@ fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
         n = -n;
     }
     var base = inst.color.rgb * v.color.rgb;
+    if (material == 3u) {
+        return vec4<f32>(skin(base, n, view_dir, 1.0), 1.0);
+    }
     var shine = 0.25;
     let key = normalize(-g.key_dir.xyz);
     let fill = normalize(-g.fill_dir.xyz);
     let h = normalize(key + view_dir);
-    if (material == 3u) {
-        return vec4<f32>(skin(base, n, view_dir, 1.0), 1.0);
-    }
     if (material == 1u) {
         base = eye_colour(v.local);
         shine = 0.8;

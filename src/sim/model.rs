@@ -99,22 +99,19 @@ impl Model {
     /// skin (the seed's skin never wrinkles).
     pub fn apply_profile(&mut self, profile: Profile) {
         self.params.apply_profile(profile);
-        let b = &self.face.params.blink;
-        let seed_face = b.neutral_only
-            && b.engaged_interval_scale == 1.0
-            && b.arousal_gain == 0.0
-            && b.levator_gain == 1.0
-            && self.face.params.skin.wrinkle_spacing_m == 0.0;
-        if profile == Profile::Seed && !seed_face {
+        if profile != Profile::Seed {
+            return;
+        }
+        let mut seed = self.face.params.clone();
+        seed.blink.neutral_only = true;
+        seed.blink.engaged_interval_scale = 1.0;
+        seed.blink.arousal_gain = 0.0;
+        seed.blink.levator_gain = 1.0;
+        seed.skin.wrinkle_spacing_m = 0.0;
+        if seed != self.face.params {
             // The face is shared: copied once here, not per run (the scene
             // loader applies the profile to the face it shares).
-            let params = &mut Arc::make_mut(&mut self.face).params;
-            params.skin.wrinkle_spacing_m = 0.0;
-            let blink = &mut params.blink;
-            blink.neutral_only = true;
-            blink.engaged_interval_scale = 1.0;
-            blink.arousal_gain = 0.0;
-            blink.levator_gain = 1.0;
+            Arc::make_mut(&mut self.face).params = seed;
         }
     }
 

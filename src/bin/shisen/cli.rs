@@ -250,8 +250,8 @@ pub enum Command {
         /// `--at` to this time instead of one picture.
         #[arg(long)]
         until: Option<f64>,
-        /// Frames per second of the animation.
-        #[arg(long, default_value_t = 25)]
+        /// Frames per second of the animation (with `--until`).
+        #[arg(long, default_value_t = 25, requires = "until")]
         fps: u32,
     },
 }
