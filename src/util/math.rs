@@ -100,6 +100,18 @@ impl JointAngles {
     }
 }
 
+/// Smooth Hermite step: 0 at or below `e0`, 1 at or beyond `e1`, with zero
+/// slope at both ends (`e1 < e0` runs the step downward).
+pub fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
+    let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// Gaussian bump `exp(-(d / s)^2)`: 1 at `d = 0`, 1/e at `d = s`.
+pub fn gauss(d: f32, s: f32) -> f32 {
+    (-(d / s) * (d / s)).exp()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -154,16 +166,4 @@ mod tests {
                 < 1e-15
         );
     }
-}
-
-/// Smooth Hermite step: 0 at or below `e0`, 1 at or beyond `e1`, with zero
-/// slope at both ends (`e1 < e0` runs the step downward).
-pub fn smoothstep(e0: f32, e1: f32, x: f32) -> f32 {
-    let t = ((x - e0) / (e1 - e0)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
-}
-
-/// Gaussian bump `exp(-(d / s)^2)`: 1 at `d = 0`, 1/e at `d = s`.
-pub fn gauss(d: f32, s: f32) -> f32 {
-    (-(d / s) * (d / s)).exp()
 }
