@@ -20,6 +20,17 @@ pub mod arm {
 pub mod eye {
     /// Eyeball radius (22 mm diameter), m.
     pub const RADIUS: f64 = 0.011;
+    /// Angular radius of the iris, to the outer edge of its limbal ring,
+    /// seen from the eyeball's centre, deg: a 12 mm iris (horizontal
+    /// visible iris diameter 11.7 mm, Rüfer et al. 2005, Cornea 24:259) on
+    /// an 11 mm eyeball reaches sin 32 deg x 11 = 5.8 mm from the axis.
+    pub const IRIS_DEG: f64 = 32.0;
+    /// Angular radius where the iris's stroma ends and its dark limbal
+    /// ring begins, deg.
+    pub const LIMBUS_DEG: f64 = 30.0;
+    /// Angular radius of the drawn pupil, deg: a 3-4 mm daylight pupil
+    /// (about 9 deg) enlarged to 5.7 mm so it stays visible at sparring distance.
+    pub const PUPIL_DEG: f64 = 15.0;
     /// Interpupillary distance, m.
     pub const IPD: f64 = 0.0619;
     /// Eye centre below the top of the head, m.

@@ -494,8 +494,17 @@ impl HeadMesh {
             for j in 0..cols {
                 let (a, b) = (map(idx(row, j)), map(idx(row, j + 1)));
                 let (c, d) = (idx(row + 1, j), idx(row + 1, j + 1));
-                triangles.push([a, c, b]);
-                triangles.push([b, c, d]);
+                // Column cols - j mirrors column j (phi antisymmetric), so
+                // the quads' diagonals are mirrored too: the mesh's
+                // connectivity, not only its shape, is left-right symmetric
+                // and anything spread along it (rig S1) stays symmetric.
+                if j < cols / 2 {
+                    triangles.push([a, c, b]);
+                    triangles.push([b, c, d]);
+                } else {
+                    triangles.push([a, c, d]);
+                    triangles.push([a, d, b]);
+                }
             }
         }
         let normals = compute_normals(&positions, &triangles);

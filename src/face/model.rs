@@ -157,11 +157,12 @@ impl FaceState {
                 .lid_follow_k(e, 1, pitch, bp.lower_lid_follow_gain as f32);
             let i = ch(MuscleKind::OculiUpperPalpebral);
             // A relaxation (AU 5) stands for levator's raise.
-            let expressed = if a.k[i] < 0.0 {
-                a.k[i] * bp.levator_gain as f32
-            } else {
-                a.k[i]
-            };
+            let expressed = face.rig.levator_k(
+                e,
+                a.k[i],
+                bp.levator_gain as f32,
+                bp.levator_max_raise_m.map(|r| r as f32),
+            );
             let k = expressed
                 + face
                     .rig
@@ -322,38 +323,95 @@ mod tests {
         }
     }
 
-    /// The levator gain scales the lid's raise (a relaxation of the upper
-    /// palpebral orbicularis, AU 5) and nothing else: surprise's mid-lid
-    /// rises 2.5 times as far, anger's lowered lid is unchanged.
+    /// Mid upper-lid rise (m) of `emotion` held at full intensity, with
+    /// the levator law set by `gain` and `max_raise`.
+    fn mid_lid_rise(gain: f64, max_raise: Option<f64>, emotion: Emotion) -> f32 {
+        let mut params = FaceParams::default_params();
+        params.blink.levator_gain = gain;
+        params.blink.levator_max_raise_m = max_raise;
+        params.blink.mean_interval_s = 1e6;
+        let f = Face::new(MeshParams { rows: 48 }, params);
+        let mut s = FaceState::default();
+        s.set_emotion(&f, emotion, 1.0, Speed::Fast, Pattern::III);
+        let mut rng = StdRng::seed_from_u64(1);
+        for _ in 0..2000 {
+            s.step(&f, 0.001, &mut rng);
+        }
+        let mid = f.mesh.rims.upper_lid[0][f.mesh.rims.upper_lid[0].len() / 2] as usize;
+        let mut out = vec![Vec3::ZERO; f.mesh.positions.len()];
+        deform(&f, &s, &mut out);
+        out[mid].y - f.mesh.positions[mid].y
+    }
+
+    /// Unbounded, the levator gain scales the lid's raise (a relaxation of
+    /// the upper palpebral orbicularis, AU 5) and nothing else: surprise's
+    /// mid-lid rises 2.5 times as far, anger's lowered lid is unchanged.
     #[test]
     fn levator_gain_scales_the_raise_only() {
-        let mid_lid_rise = |gain: f64, emotion: Emotion| {
-            let mut params = FaceParams::default_params();
-            params.blink.levator_gain = gain;
-            params.blink.mean_interval_s = 1e6;
-            let f = Face::new(MeshParams { rows: 48 }, params);
-            let mut s = FaceState::default();
-            s.set_emotion(&f, emotion, 1.0, Speed::Fast, Pattern::III);
-            let mut rng = StdRng::seed_from_u64(1);
-            for _ in 0..2000 {
-                s.step(&f, 0.001, &mut rng);
-            }
-            let mid = f.mesh.rims.upper_lid[0][f.mesh.rims.upper_lid[0].len() / 2] as usize;
-            let mut out = vec![Vec3::ZERO; f.mesh.positions.len()];
-            deform(&f, &s, &mut out);
-            out[mid].y - f.mesh.positions[mid].y
-        };
         let (one, more) = (
-            mid_lid_rise(1.0, Emotion::Surprise),
-            mid_lid_rise(2.5, Emotion::Surprise),
+            mid_lid_rise(1.0, None, Emotion::Surprise),
+            mid_lid_rise(2.5, None, Emotion::Surprise),
         );
         assert!(one > 0.0005, "surprise raises the lid: {one}");
         assert!((more / one - 2.5).abs() < 0.05, "{one} -> {more}");
         let (one, more) = (
-            mid_lid_rise(1.0, Emotion::Anger),
-            mid_lid_rise(2.5, Emotion::Anger),
+            mid_lid_rise(1.0, None, Emotion::Anger),
+            mid_lid_rise(6.0, Some(0.0045), Emotion::Anger),
         );
         assert!(one < 0.0 && (one - more).abs() < 1e-6, "{one} vs {more}");
+    }
+
+    /// L1 bounded: the raise follows R tanh(g u / R) of the thesis lid's
+    /// own raise u, so it never passes R however large the gain, and a
+    /// larger relaxation still raises the lid further.
+    #[test]
+    fn levator_raise_saturates_below_its_bound() {
+        let r = 0.0045;
+        let u = mid_lid_rise(1.0, None, Emotion::Surprise);
+        let bounded = mid_lid_rise(6.0, Some(r as f64), Emotion::Surprise);
+        let expect = r * (6.0 * u / r).tanh();
+        // The lid-clearance step may move the margin by a fraction of a mm.
+        assert!((bounded - expect).abs() < 0.0003, "{bounded} vs {expect}");
+        let huge = mid_lid_rise(1000.0, Some(r as f64), Emotion::Surprise);
+        assert!(huge < r + 0.0003 && huge > bounded, "{huge}");
+        let fear = mid_lid_rise(6.0, Some(r as f64), Emotion::Fear);
+        assert!(0.0 < fear && fear < bounded, "{fear} vs {bounded}");
+    }
+
+    /// face.md section 4: a relaxed upper palpebral part raises the lid
+    /// *showing white above the iris* in surprise and fear. At rest the
+    /// lid covers the iris's top edge; with the default levator law the
+    /// margin clears it by at least half a millimetre in both, at both
+    /// mesh resolutions.
+    #[test]
+    fn surprise_and_fear_show_white_above_the_iris() {
+        use crate::anatomy::eye;
+        let iris_top = (eye::RADIUS * eye::IRIS_DEG.to_radians().sin()) as f32;
+        for rows in [32, 48, 100] {
+            let mut params = FaceParams::default_params();
+            params.blink.mean_interval_s = 1e6;
+            let f = Face::new(MeshParams { rows }, params);
+            let mid = f.mesh.rims.upper_lid[0][f.mesh.rims.upper_lid[0].len() / 2] as usize;
+            let centre = f.rig.eye_centres[0].y;
+            let rest = f.mesh.positions[mid].y - centre;
+            assert!(
+                rest < iris_top,
+                "rows {rows}: the lid at rest covers the iris's top"
+            );
+            for emotion in [Emotion::Surprise, Emotion::Fear] {
+                let mut s = FaceState::default();
+                s.set_emotion(&f, emotion, 1.0, Speed::Fast, Pattern::III);
+                let mut rng = StdRng::seed_from_u64(1);
+                for _ in 0..2000 {
+                    s.step(&f, 0.001, &mut rng);
+                }
+                let mut out = vec![Vec3::ZERO; f.mesh.positions.len()];
+                deform(&f, &s, &mut out);
+                let white = out[mid].y - centre - iris_top;
+                println!("rows {rows} {emotion:?}: {:.2} mm of white", white * 1000.0);
+                assert!(white > 0.0005, "rows {rows} {emotion:?}: {white} m");
+            }
+        }
     }
 
     #[test]

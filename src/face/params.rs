@@ -73,20 +73,36 @@ pub struct BlinkParams {
         deserialize_with = "crate::util::check::non_negative"
     )]
     pub lower_lid_follow_gain: f64,
-    /// Upper-lid raise per unit of relaxation of the upper palpebral
-    /// orbicularis (an expression's negative contraction, AU 5). The
-    /// thesis codes AU 5 as that muscle relaxing, so the lid can only
-    /// travel back along the muscle's own closing path, and fear's -0.18
-    /// lifts it half a millimetre; the lid is raised by levator palpebrae,
-    /// which lifts it 12-17 mm from down- to upgaze (Beard 1981, Ptosis,
-    /// 3rd ed.) and a few millimetres above its rest height when the eyes
-    /// are opened wide. Default 2.5 (surprise's -0.48 raises the mid-lid
-    /// 3.6 mm instead of 1.45, fear's 1.4 mm); 1 is the thesis's lid.
+    /// Gain of the upper lid's raise on a relaxation of the upper
+    /// palpebral orbicularis (an expression's negative contraction, AU 5;
+    /// face.md L1). The thesis codes AU 5 as that muscle relaxing, so the
+    /// lid can only travel back along the muscle's own closing path, and
+    /// fear's -0.18 lifts it half a millimetre, under the iris's top edge;
+    /// the lid is in fact raised by levator palpebrae, which lifts it
+    /// 12-17 mm from down- to upgaze (Beard 1981, Ptosis, 3rd ed.). The
+    /// raise the relaxation gives on its own is multiplied by this gain
+    /// (then bounded by `levator_max_raise_m`). Default 6 (our choice: fear
+    /// shows white above the iris, as face.md section 4 asks); 1 is the
+    /// thesis's lid.
     #[serde(
         default = "default_levator_gain",
         deserialize_with = "crate::util::check::positive"
     )]
     pub levator_gain: f64,
+    /// Highest the upper lid's mid margin rises above its rest, metres
+    /// (L1: the raise saturates smoothly towards it), or `None` for the
+    /// thesis's unbounded, linear lid. A lid at rest covers the iris's top
+    /// 1-2 mm, its margin 4-5 mm above the corneal reflex (MRD1; the
+    /// clinical norm in AAO's Basic and Clinical Science Course, section 7,
+    /// Orbit, Eyelids and Lacrimal System); the default
+    /// `Some(0.0045)` lets the widest eyes show about 3 mm of white above
+    /// the iris (our choice), and keeps a relaxation near -1 (a value the
+    /// thesis's subjects chose, appendix A) from folding the lid.
+    #[serde(
+        default = "default_levator_max_raise",
+        deserialize_with = "crate::util::check::opt_positive"
+    )]
+    pub levator_max_raise_m: Option<f64>,
     /// Blink intervals are stretched by this factor while the VH is
     /// engaged (guarding or attacking): the spontaneous blink rate drops
     /// under visual demand (17 /min at rest against 4.5 /min while
@@ -120,7 +136,11 @@ fn default_engaged_scale() -> f64 {
 }
 
 fn default_levator_gain() -> f64 {
-    2.5
+    6.0
+}
+
+fn default_levator_max_raise() -> Option<f64> {
+    Some(0.0045)
 }
 
 fn default_lower_lid_follow_gain() -> f64 {

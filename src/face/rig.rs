@@ -2,7 +2,9 @@
 //! displacement fields (face.md 3-5).
 //!
 //! (F1) and (F6) are linear in k, so each muscle channel stores its
-//! displacement at k = 1 for the vertices it moves. The jaw (F7) is a
+//! displacement at k = 1 for the vertices it moves; a linear muscle's is
+//! first spread through the skin (S1, docs/model/face.md), which keeps it
+//! linear in k. The jaw (F7) is a
 //! rotation: per vertex we store `alpha / theta` and the rest offset from
 //! the jaw axis, and rotate at frame time with 7th-order sin / 6th-order cos
 //! polynomials (error < a^7/5040: below 1e-7 rad-equivalent for a < 0.35 rad
@@ -182,6 +184,138 @@ fn lid(side: Side, l: &Landmarks, p: &FaceParams) -> LidSphincter {
     }
 }
 
+/// S1, the skin's spread of a muscle's pull: a field diffused along the
+/// mesh (never across an opening it leaves, lips or lids) by the explicit
+/// cotangent heat flow (Desbrun et al. 1999, SIGGRAPH, "Implicit fairing
+/// of irregular meshes"), for a time `sigma^2 / 2`: a standard deviation
+/// `sigma` along the skin, the same in every direction at any resolution.
+/// The lids (each eye's lid zone) keep their own values: their margins are
+/// held by the tarsal plates, and a brow's pull must not leak into them
+/// (face.md table 4.1: frontalis does not move the lids).
+/// Displacements per unit contraction smaller than this (1 um) are left
+/// out of a spread field.
+const SPREAD_FLOOR: f32 = 1e-6;
+
+struct Spread {
+    /// Per vertex: its neighbours and their cotangent weights.
+    neighbours: Vec<Vec<(u32, f32)>>,
+    /// Per vertex: `min(1, dt W_i / A_i)`, the fraction of the way to its
+    /// neighbours' weighted mean a step moves it (0: held).
+    rate: Vec<f32>,
+    steps: usize,
+}
+
+impl Spread {
+    fn new(mesh: &HeadMesh, sigma: f32) -> Spread {
+        let p = &mesh.positions;
+        let n = p.len();
+        let mut neighbours: Vec<Vec<(u32, f32)>> = vec![Vec::new(); n];
+        let mut area = vec![0.0f32; n];
+        for t in &mesh.triangles {
+            let [a, b, c] = t.map(|i| p[i as usize]);
+            let twice = (b - a).cross(c - a).length();
+            if twice <= 0.0 {
+                continue;
+            }
+            for &i in t {
+                area[i as usize] += twice / 6.0;
+            }
+            // Each edge gets half the cotangent of the angle opposite it.
+            for k in 0..3 {
+                let (i, j, o) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+                let (u, v) = (p[i as usize] - p[o as usize], p[j as usize] - p[o as usize]);
+                let cot = u.dot(v) / u.cross(v).length();
+                for (x, y) in [(i, j), (j, i)] {
+                    let list = &mut neighbours[x as usize];
+                    match list.iter_mut().find(|(q, _)| *q == y) {
+                        Some(e) => e.1 += 0.5 * cot,
+                        None => list.push((y, 0.5 * cot)),
+                    }
+                }
+            }
+        }
+        // Obtuse triangles can make a weight negative; keep the flow a
+        // mean of the neighbours.
+        for list in &mut neighbours {
+            list.retain(|e| e.1 > 0.0);
+        }
+        let total: Vec<f32> = neighbours
+            .iter()
+            .map(|l| l.iter().map(|e| e.1).sum())
+            .collect();
+        // dt: half the median vertex's own stability limit A_i / W_i; the
+        // few smaller cells (the poles, where no muscle reaches) move at
+        // most to their neighbours' mean per step.
+        let mut limits: Vec<f32> = (0..n)
+            .filter(|&i| total[i] > 0.0 && area[i] > 0.0)
+            .map(|i| area[i] / total[i])
+            .collect();
+        if limits.is_empty() {
+            return Spread {
+                neighbours,
+                rate: vec![0.0; n],
+                steps: 0,
+            };
+        }
+        let mid = limits.len() / 2;
+        let dt_max = 0.5 * *limits.select_nth_unstable_by(mid, f32::total_cmp).1;
+        let time = 0.5 * sigma * sigma; // (S1) per-axis variance 2 t = sigma^2
+        let steps = (time / dt_max).ceil() as usize;
+        let dt = time / steps as f32;
+        let mut rate: Vec<f32> = (0..n)
+            .map(|i| {
+                if area[i] > 0.0 {
+                    (dt * total[i] / area[i]).min(1.0)
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        for &i in mesh.lid_zone.iter().flatten() {
+            rate[i as usize] = 0.0;
+        }
+        Spread {
+            neighbours,
+            rate,
+            steps,
+        }
+    }
+
+    /// The field after S1's steps (dense while diffusing, sparse again).
+    fn apply(&self, f: &SparseField) -> SparseField {
+        let n = self.neighbours.len();
+        let mut d = vec![Vec3::ZERO; n];
+        for (&i, &v) in f.index.iter().zip(&f.delta) {
+            d[i as usize] = v;
+        }
+        let mut next = d.clone();
+        for _ in 0..self.steps {
+            for (i, out) in next.iter_mut().enumerate() {
+                let rate = self.rate[i];
+                if rate == 0.0 {
+                    continue;
+                }
+                let (mut sum, mut w) = (Vec3::ZERO, 0.0);
+                for &(j, wj) in &self.neighbours[i] {
+                    sum += wj * d[j as usize];
+                    w += wj;
+                }
+                // (S1) d_i += min(1, dt W_i / A_i) (mean_j d_j - d_i)
+                *out = d[i] + rate * (sum / w - d[i]);
+            }
+            std::mem::swap(&mut d, &mut next);
+        }
+        let mut out = SparseField::default();
+        for (i, v) in d.into_iter().enumerate() {
+            if v.length_squared() > SPREAD_FLOOR * SPREAD_FLOOR {
+                out.index.push(i as u32);
+                out.delta.push(v);
+            }
+        }
+        out
+    }
+}
+
 impl Rig {
     /// Place every muscle on the mesh's landmarks and precompute the fields.
     pub fn build(mesh: &HeadMesh, params: &FaceParams) -> Rig {
@@ -213,6 +347,15 @@ impl Rig {
             }
             muscles.push((id, g));
             fields.push(f);
+        }
+        let sigma = params.skin.pull_spread_m as f32;
+        if sigma > 0.0 {
+            let spread = Spread::new(mesh, sigma);
+            for ((_, g), f) in muscles.iter().zip(&mut fields) {
+                if matches!(g, MuscleGeometry::Linear(_)) {
+                    *f = spread.apply(f);
+                }
+            }
         }
         let jaw = Jaw {
             pivot: Vec3::new(0.0, l.jaw_pivot.y, l.jaw_pivot.z),
@@ -265,6 +408,22 @@ impl Rig {
         }
     }
 
+    /// Upper palpebral contraction standing for levator palpebrae's lift of
+    /// eye `e`'s upper lid when an expression relaxes that channel (AU 5,
+    /// `k < 0`): the relaxation alone would raise the mid margin by `u`;
+    /// the lid rises `g u`, or `R tanh(g u / R)` when bounded by the
+    /// highest raise `R` (L1). Contractions (`k >= 0`: a lowered lid, a
+    /// blink) pass unchanged, as does a channel that cannot move the margin.
+    pub fn levator_k(&self, e: usize, k: f32, gain: f32, max_raise: Option<f32>) -> f32 {
+        let c = self.lid_y_per_k[e][0];
+        if k >= 0.0 || c.abs() < 1e-6 {
+            return k;
+        }
+        let u = gain * k * c; // (L1) the linear raise, metres
+        let rise = max_raise.map_or(u, |r| r * (u / r).tanh()); // (L1)
+        rise / c
+    }
+
     /// Deformed positions: rest + sum k_m field_m (F1, F6 linear in k) +
     /// jaw rotation (F7), then the lid clearance step. `out.len()` must
     /// equal the vertex count. No allocation.
@@ -295,5 +454,113 @@ impl Rig {
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::face::emotion::emotion_activation;
+    use crate::face::mesh::MeshParams;
+    use crate::face::params::FaceParams;
+    use crate::face::tables::Emotion;
+
+    /// S1 spreads a point pull over the requested standard deviation,
+    /// alike across and along the skin, at any resolution: a unit
+    /// displacement at one forehead vertex ends with a per-axis spread
+    /// within 20 % of `sigma`.
+    #[test]
+    fn spread_reaches_sigma_at_any_resolution() {
+        let sigma = 0.005;
+        for rows in [48, 100, 160] {
+            let mesh = HeadMesh::generate(MeshParams { rows });
+            let forehead = Vec3::new(0.0, 0.05, 0.2);
+            let centre = (0..mesh.positions.len())
+                .min_by(|&a, &b| {
+                    let d = |i: usize| mesh.positions[i].distance_squared(forehead);
+                    d(a).total_cmp(&d(b))
+                })
+                .unwrap();
+            let f = SparseField {
+                index: vec![centre as u32],
+                delta: vec![Vec3::X],
+            };
+            let s = Spread::new(&mesh, sigma).apply(&f);
+            let total: f32 = s.delta.iter().map(|d| d.x).sum();
+            let p0 = mesh.positions[centre];
+            let (mut vx, mut vy) = (0.0, 0.0);
+            for (&i, d) in s.index.iter().zip(&s.delta) {
+                let q = mesh.positions[i as usize] - p0;
+                vx += d.x / total * q.x * q.x;
+                vy += d.x / total * q.y * q.y;
+            }
+            let (sx, sy) = (vx.sqrt(), vy.sqrt());
+            println!("rows {rows}: sd x {:.2} mm, y {:.2} mm", sx * 1e3, sy * 1e3);
+            for sd in [sx, sy] {
+                assert!((sd / sigma - 1.0).abs() < 0.2, "rows {rows}: {sx} x {sy}");
+            }
+        }
+    }
+
+    /// With no spread the fields are Waters' own (F1, F6 at k = 1).
+    #[test]
+    fn no_spread_keeps_waters_fields() {
+        let mut params = FaceParams::default_params();
+        params.skin.pull_spread_m = 0.0;
+        let mesh = HeadMesh::generate(MeshParams { rows: 32 });
+        let rig = Rig::build(&mesh, &params);
+        for ((_, g), f) in rig.muscles.iter().zip(&rig.fields) {
+            for (&i, d) in f.index.iter().zip(&f.delta) {
+                assert_eq!(*d, g.displacement(mesh.positions[i as usize], 1.0));
+            }
+        }
+    }
+
+    /// What S1 is for: Waters' procerus shears the skin along its cone's
+    /// edges, most near the nasal bone (the V up from the nose's root in
+    /// every frown). The shear shows as the ratio of a triangle's two
+    /// principal stretches: around the glabella in anger Waters' own field
+    /// reaches 17 (3.6 spread); spread, it must stay under a quarter of it.
+    #[test]
+    fn spread_skin_is_not_sheared_at_the_glabella() {
+        let worst = |spread: f64| {
+            let mut params = FaceParams::default_params();
+            params.skin.pull_spread_m = spread;
+            let mesh = HeadMesh::generate(MeshParams { rows: 48 });
+            let rig = Rig::build(&mesh, &params);
+            let a = emotion_activation(&params, Emotion::Anger, 1.0);
+            let mut d = vec![Vec3::ZERO; mesh.positions.len()];
+            rig.deform(&mesh, &a, &mut d);
+            let p = &mesh.positions;
+            let root = mesh.landmarks.nasal_bone;
+            mesh.triangles
+                .iter()
+                .filter(|t| p[t[0] as usize].distance(root) < 0.025)
+                .map(|t| {
+                    let [a, b, c] = t.map(|i| i as usize);
+                    // Principal stretches of the 2x2 right Cauchy-Green
+                    // tensor in the rest triangle's frame.
+                    let (e1, e2) = (p[b] - p[a], p[c] - p[a]);
+                    let u = e1.normalize();
+                    let v = e1.cross(e2).cross(u).normalize();
+                    let rest =
+                        glam::Mat2::from_cols_array(&[e1.dot(u), e1.dot(v), e2.dot(u), e2.dot(v)]);
+                    let inv = rest.inverse();
+                    let (f1, f2) = (d[b] - d[a], d[c] - d[a]);
+                    let fa = f1 * inv.x_axis.x + f2 * inv.x_axis.y;
+                    let fb = f1 * inv.y_axis.x + f2 * inv.y_axis.y;
+                    let (c11, c12, c22) = (fa.dot(fa), fa.dot(fb), fb.dot(fb));
+                    let (m, r) = (
+                        0.5 * (c11 + c22),
+                        (0.25 * (c11 - c22).powi(2) + c12 * c12).sqrt(),
+                    );
+                    ((m + r) / (m - r).max(1e-9)).sqrt()
+                })
+                .fold(0.0f32, f32::max)
+        };
+        let (waters, spread) = (worst(0.0), worst(0.005));
+        println!("stretch ratio at the glabella: {waters:.2} unspread, {spread:.2} spread");
+        assert!(waters > 10.0, "{waters}");
+        assert!(spread < 0.25 * waters, "{spread} vs {waters}");
     }
 }

@@ -40,13 +40,32 @@ pub struct SkinParams {
     /// the pull of a smile or a weak expression leaves the skin smooth.
     #[serde(deserialize_with = "crate::util::check::unit_interval")]
     pub wrinkle_onset_strain: f64,
+    /// Distance over which the skin spreads a linear muscle's pull, metres
+    /// (the standard deviation of S1's diffusion). Waters' cone (F2, F3)
+    /// moves the skin with a slope that jumps at the cone's edge and
+    /// converges it onto the bony end, which creased the skin along a V
+    /// from the nose's root in every frown; skin and the fat under it
+    /// carry a pull over about their own depth, 5-7 mm at the glabella and
+    /// the nose's root (De Greef et al. 2006, Forensic Sci. Int. 159S:S126,
+    /// soft-tissue depths by ultrasound). Our choice within that, 5 mm;
+    /// 0 keeps Waters' fields exactly (the seed profile).
+    #[serde(default = "default_pull_spread", deserialize_with = "pull_spread")]
+    pub pull_spread_m: f64,
+}
+
+fn default_pull_spread() -> f64 {
+    0.005
+}
+
+fn pull_spread<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    crate::util::check::in_range(d, 0.0, MAX_SPACING_M)
 }
 
 fn wrinkle_spacing<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
     crate::util::check::in_range(d, 0.0, MAX_SPACING_M)
 }
 
-/// Widest line spacing a database may give, m.
+/// Widest line spacing (and pull spread) a database may give, m.
 const MAX_SPACING_M: f64 = 0.03;
 
 impl Default for SkinParams {
@@ -54,6 +73,7 @@ impl Default for SkinParams {
         SkinParams {
             wrinkle_spacing_m: 0.006,
             wrinkle_onset_strain: 0.25,
+            pull_spread_m: default_pull_spread(),
         }
     }
 }
@@ -184,18 +204,22 @@ impl WrinkleBasis {
 /// axis is not compressed past onset.
 pub type WrinkleVertex = [f32; 4];
 
-/// Compression (1 - stretch) of the skin along unit tangent `t` under the
-/// averaged Green strain `e` (W1). The triangles averaged lie in slightly
-/// different planes, so `t` lies only partly in them: the strain is divided
-/// by `held = t . P t`, the part of `t` their planes hold (a uniform
-/// shrink then reads the same on a curved face as on a flat one).
-fn compression(e: &[f32; 6], t: Vec3, held: f32) -> f32 {
+/// Compression of the skin along unit tangent `t` under the averaged Green
+/// strain `e[..6]` and area ratio `e[6]` (W1): `1 - stretch` along `t`,
+/// but no more than the area lost, `1 - J`. The triangles averaged lie in
+/// slightly different planes, so `t` lies only partly in them: the strain
+/// is divided by `held = t . P t`, the part of `t` their planes hold (a
+/// uniform shrink then reads the same on a curved face as on a flat one).
+/// A shear shortens one diagonal as much as it stretches the other and
+/// keeps the area: the skin slides on its fat rather than folding.
+fn compression(e: &[f32; 7], t: Vec3, held: f32) -> f32 {
     let et = Vec3::new(
         e[0] * t.x + e[3] * t.y + e[4] * t.z,
         e[3] * t.x + e[1] * t.y + e[5] * t.z,
         e[4] * t.x + e[5] * t.y + e[2] * t.z,
     );
-    1.0 - (1.0 + 2.0 * t.dot(et) / held).max(0.0).sqrt()
+    let along = 1.0 - (1.0 + 2.0 * t.dot(et) / held).max(0.0).sqrt();
+    along.min(1.0 - e[6]) // (W1)
 }
 
 /// Measure the compression of `deformed` against the rest shape (W1) and
@@ -221,8 +245,8 @@ pub fn measure(
         return;
     }
     // Green strain E = (F^T F - I) / 2 of each triangle, as a symmetric
-    // 3x3 tensor [xx, yy, zz, xy, xz, yz].
-    let strain: Vec<[f32; 6]> = mesh
+    // 3x3 tensor [xx, yy, zz, xy, xz, yz], and its area ratio J.
+    let strain: Vec<[f32; 7]> = mesh
         .triangles
         .iter()
         .enumerate()
@@ -241,7 +265,8 @@ pub fn measure(
             let m = |i: usize, j: usize| {
                 e00 * t1[i] * t1[j] + e01 * (t1[i] * t2[j] + t2[i] * t1[j]) + e11 * t2[i] * t2[j]
             };
-            [m(0, 0), m(1, 1), m(2, 2), m(0, 1), m(0, 2), m(1, 2)]
+            let j = fa.cross(fb).length();
+            [m(0, 0), m(1, 1), m(2, 2), m(0, 1), m(0, 2), m(1, 2), j]
         })
         .collect();
     let spacing = skin.wrinkle_spacing_m as f32;
@@ -252,7 +277,7 @@ pub fn measure(
     let slope = |c: f32| 2.0 * (c - onset).max(0.0).sqrt();
     for (i, out) in out.iter_mut().enumerate() {
         // W1: the strain averaged over the vertex's disk.
-        let mut e = [0.0f32; 6];
+        let mut e = [0.0f32; 7];
         let range = basis.start[i] as usize..basis.start[i + 1] as usize;
         for &(t, w) in &basis.gather[range] {
             for (ek, sk) in e.iter_mut().zip(&strain[t as usize]) {

@@ -337,7 +337,7 @@ impl Renderer {
             .unwrap_or(1);
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("shisen shader"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("shader.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(shader_source().into()),
         });
         let globals_size = size_of::<Globals>() as u64;
         let instance_size = size_of::<Instance>() as u64;
@@ -804,4 +804,19 @@ impl Renderer {
         image::RgbaImage::from_raw(w, h, pixels)
             .ok_or_else(|| RenderError::Readback("short image".into()))
     }
+}
+
+/// The main shader, with the eye's drawn proportions (`anatomy::eye`)
+/// prepended as WGSL constants: one home for the iris's size, which the
+/// face's lid tests measure against.
+fn shader_source() -> String {
+    use crate::anatomy::eye;
+    let cos = |deg: f64| deg.to_radians().cos();
+    format!(
+        "const PUPIL_COS: f32 = {:.6};\nconst LIMBUS_COS: f32 = {:.6};\nconst IRIS_COS: f32 = {:.6};\n{}",
+        cos(eye::PUPIL_DEG),
+        cos(eye::LIMBUS_DEG),
+        cos(eye::IRIS_DEG),
+        include_str!("shader.wgsl")
+    )
 }

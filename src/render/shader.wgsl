@@ -85,12 +85,9 @@ fn vs_painted(
     return o;
 }
 
-// Eye: angular radii of the pupil and the iris seen from the eyeball
-// centre (a 2 mm pupil and 6 mm iris on an 11 mm eyeball, the pupil
-// enlarged to about 3 mm to stay visible at a distance).
-const PUPIL_COS: f32 = 0.966; // cos 15 deg
-const IRIS_COS: f32 = 0.848;  // cos 32 deg
-const LIMBUS_COS: f32 = 0.866; // cos 30 deg
+// Eye: PUPIL_COS, LIMBUS_COS and IRIS_COS, the cosines of the angular radii
+// of the pupil, the iris's stroma and its limbal ring seen from the eyeball
+// centre, are prepended by the renderer from `anatomy::eye`.
 
 fn eye_colour(local: vec3<f32>) -> vec3<f32> {
     let d = normalize(local);

@@ -107,7 +107,9 @@ impl Model {
         seed.blink.engaged_interval_scale = 1.0;
         seed.blink.arousal_gain = 0.0;
         seed.blink.levator_gain = 1.0;
+        seed.blink.levator_max_raise_m = None;
         seed.skin.wrinkle_spacing_m = 0.0;
+        seed.skin.pull_spread_m = 0.0;
         if seed != self.face.params {
             // The face is shared: copied once here, not per run (the scene
             // loader applies the profile to the face it shares).

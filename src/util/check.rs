@@ -73,6 +73,16 @@ pub fn opt_non_negative<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, 
     non_negative(d).map(Some)
 }
 
+/// An optional [`positive`] number written as RON's `Some(x)`, or `None`.
+pub fn opt_positive<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
+    match Option::<f64>::deserialize(d)? {
+        Some(v) if !v.is_finite() || v <= 0.0 => Err(D::Error::custom(format!(
+            "must be a finite number > 0 (or None), got {v}"
+        ))),
+        v => Ok(v),
+    }
+}
+
 /// Largest distance from the origin a position may have on any axis, m:
 /// the sparring room is a few metres across; this leaves room for props
 /// thrown far, not for typos such as 1e6.
