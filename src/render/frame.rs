@@ -600,13 +600,30 @@ const LASH: [f32; 4] = {
     [l[0], l[1], l[2], 1.0]
 };
 
-/// Eyelashes and lid margins: a tapered, curled fringe on each lid rim
-/// and a narrow ledge behind it (the lid's thickness), rooted on the
-/// deformed rim vertices so they ride every lid movement and blink. The
-/// upper fringe sweeps forward and up, the lower forward and down; both
-/// taper to nothing at the eye corners. A triangle list, face frame.
+/// Lashes along each lid, spaced this far apart at the root, m (people
+/// have 90-160 upper and 70-80 lower lashes in several rows; one row of
+/// strands this close, each a fraction of a pixel wide at sparring
+/// distance, reads as the same soft dark fringe).
+const LASH_SPACING: f32 = 0.0008;
+/// Width of a lash at its root, m (a lash is about 0.1 mm thick; drawn
+/// wider, as several lashes of a row overlap).
+const LASH_WIDTH: f32 = 0.0007;
+
+/// Eyelashes and lid margins: a curled fringe of thin tapered strands on
+/// each lid rim and a narrow ledge behind it (the lid's thickness), rooted
+/// on the deformed rim so they ride every lid movement and blink. The
+/// strands are spaced along the rim's length, not per mesh vertex, so the
+/// fringe is as dense at every mesh resolution; each strand's length and
+/// lean vary a little (a fixed pattern, no randomness), the outer ones
+/// lean out towards the eye's corner. The upper fringe sweeps forward and
+/// up, the lower forward and down; both taper to nothing at the corners.
+/// A triangle list, face frame.
 fn lashes(rims: &crate::face::mesh::Rims, face: &[Vertex]) -> Vec<Vertex> {
     let mut out = Vec::new();
+    let vertex = |i: u32| {
+        let v = &face[i as usize];
+        (Vec3::from_array(v.pos), Vec3::from_array(v.normal))
+    };
     for (rim, len, lift) in rims
         .upper_lid
         .iter()
@@ -614,42 +631,65 @@ fn lashes(rims: &crate::face::mesh::Rims, face: &[Vertex]) -> Vec<Vertex> {
         .chain(rims.lower_lid.iter().map(|r| (r, LASH_LENGTH[1], -1.0)))
     {
         let n = rim.len();
-        let strand = |i: usize| {
-            let v = &face[rim[i] as usize];
-            let (p, nrm) = (Vec3::from_array(v.pos), Vec3::from_array(v.normal));
-            let xi = 2.0 * i as f32 / (n - 1).max(1) as f32 - 1.0;
-            let l = len * (1.0 - xi * xi).max(0.0).sqrt();
-            let out_dir = (nrm + Vec3::Z).normalize_or(Vec3::Z);
-            let mid = p + out_dir * l * 0.6 + Vec3::Y * lift * l * 0.08;
-            let tip = p + out_dir * l * 0.9 + Vec3::Y * lift * l * 0.35;
-            [p, mid, tip]
-        };
+        if n < 2 {
+            continue;
+        }
         // The lid's margin: a ledge from the rim back toward the eyeball,
         // the lid's thickness, seen from below (upper lid) or above.
         let ledge = |i: usize| {
-            let v = &face[rim[i] as usize];
-            let (p, nrm) = (Vec3::from_array(v.pos), Vec3::from_array(v.normal));
+            let (p, nrm) = vertex(rim[i]);
             [p, p - nrm * LID_THICKNESS]
         };
-        for i in 0..n.saturating_sub(1) {
+        for i in 0..n - 1 {
             let (a, b) = (ledge(i), ledge(i + 1));
             let quad = [a[0], b[0], b[1], a[0], b[1], a[1]];
             let normal = Vec3::Y * -lift;
             out.extend(quad.map(|p| Vertex::coloured(p, normal, LID_MARGIN)));
         }
-        // A comb of tapered tufts, one per rim edge (root on the edge, the
-        // curled tip over its middle), not a solid sheet: the lashes read
-        // as hairs from below and the side.
-        for i in 0..n.saturating_sub(1) {
-            let (a, b) = (strand(i), strand(i + 1));
-            let (mid, tip) = ((a[1] + b[1]) / 2.0, (a[2] + b[2]) / 2.0);
-            let half = (b[0] - a[0]) * 0.25;
-            let tuft = [
-                [a[0], b[0], mid + half],
-                [a[0], mid + half, mid - half],
-                [mid - half, mid + half, tip],
+        // Arc length along the deformed rim.
+        let mut at = vec![0.0f32; n];
+        for i in 1..n {
+            at[i] = at[i - 1] + vertex(rim[i]).0.distance(vertex(rim[i - 1]).0);
+        }
+        let total = at[n - 1];
+        let count = (total / LASH_SPACING) as usize;
+        let mut seg = 0;
+        for k in 0..count {
+            let s = (k as f32 + 0.5) / count as f32 * total;
+            while seg + 2 < n && at[seg + 1] < s {
+                seg += 1;
+            }
+            let f = ((s - at[seg]) / (at[seg + 1] - at[seg]).max(1e-9)).clamp(0.0, 1.0);
+            let ((p0, n0), (p1, n1)) = (vertex(rim[seg]), vertex(rim[seg + 1]));
+            let root = p0.lerp(p1, f);
+            let along = (p1 - p0).normalize_or(Vec3::X);
+            let nrm = n0.lerp(n1, f);
+            // xi in [-1, 1] from one corner to the other; the outer corner
+            // is where x is largest in magnitude.
+            let xi = 2.0 * s / total - 1.0;
+            let outward = if (p1.x.abs() - p0.x.abs()) * (p1.x - p0.x).signum() >= 0.0 {
+                along
+            } else {
+                -along
+            };
+            let outer = xi * (p1.x - p0.x).signum() * p0.x.signum();
+            // A fixed, irregular pattern of length and lean.
+            let jitter = |m: f32| (k as f32 * m).sin();
+            let l = len * (1.0 - xi * xi).max(0.0).sqrt() * (0.85 + 0.15 * jitter(12.9898));
+            if l <= 0.0 {
+                continue;
+            }
+            let lean = outward * (0.25 * outer.max(0.0) + 0.08 * jitter(78.233));
+            let out_dir = (nrm + Vec3::Z).normalize_or(Vec3::Z);
+            let mid = root + (out_dir * 0.6 + lean * 0.3) * l + Vec3::Y * lift * l * 0.08;
+            let tip = root + (out_dir * 0.9 + lean) * l + Vec3::Y * lift * l * 0.35;
+            let w = along * (0.5 * LASH_WIDTH);
+            let strand = [
+                [root - w, root + w, mid + w * 0.5],
+                [root - w, mid + w * 0.5, mid - w * 0.5],
+                [mid - w * 0.5, mid + w * 0.5, tip],
             ];
-            for t in tuft {
+            for t in strand {
                 let normal = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or(Vec3::Z);
                 out.extend(t.map(|p| Vertex::coloured(p, normal, LASH)));
             }
