@@ -652,6 +652,7 @@ fn lashes(rims: &crate::face::mesh::Rims, face: &[Vertex]) -> Vec<Vertex> {
             at[i] = at[i - 1] + vertex(rim[i]).0.distance(vertex(rim[i - 1]).0);
         }
         let total = at[n - 1];
+        let outer_last = vertex(rim[n - 1]).0.x.abs() > vertex(rim[0]).0.x.abs();
         let count = (total / LASH_SPACING) as usize;
         let mut seg = 0;
         for k in 0..count {
@@ -664,15 +665,11 @@ fn lashes(rims: &crate::face::mesh::Rims, face: &[Vertex]) -> Vec<Vertex> {
             let root = p0.lerp(p1, f);
             let along = (p1 - p0).normalize_or(Vec3::X);
             let nrm = n0.lerp(n1, f);
-            // xi in [-1, 1] from one corner to the other; the outer corner
-            // is where x is largest in magnitude.
+            // xi in [-1, 1] from one corner to the other; `outer` is +1 at
+            // the outer corner (the rim end farther from the midline).
             let xi = 2.0 * s / total - 1.0;
-            let outward = if (p1.x.abs() - p0.x.abs()) * (p1.x - p0.x).signum() >= 0.0 {
-                along
-            } else {
-                -along
-            };
-            let outer = xi * (p1.x - p0.x).signum() * p0.x.signum();
+            let outer = if outer_last { xi } else { -xi };
+            let outward = if outer_last { along } else { -along };
             // A fixed, irregular pattern of length and lean.
             let jitter = |m: f32| (k as f32 * m).sin();
             let l = len * (1.0 - xi * xi).max(0.0).sqrt() * (0.85 + 0.15 * jitter(12.9898));
