@@ -28,6 +28,7 @@ use super::muscle::{
 };
 use super::params::FaceParams;
 use super::tables::MuscleKind;
+use crate::util::math::smoothstep;
 use glam::Vec3;
 
 fn eye_centre(l: &Landmarks, side: Side) -> Vec3 {
@@ -100,6 +101,119 @@ pub struct Rig {
     /// Vertical displacement of the mid upper and lower lid margins per
     /// unit contraction of their palpebral channel, per eye: `[upper, lower]`.
     pub lid_y_per_k: [[f32; 2]; 2],
+    /// The lower lip's region, held to the upper lip by orbicularis oris (O1).
+    pub lip_seal: LipSeal,
+}
+
+/// Precomputed data of the lip seal (O1): the vertices of the lower lip and
+/// the skin below it, each with the rim column whose opening it closes and
+/// how much of it, and the law's constants.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct LipSeal {
+    /// Orbicularis oris channel.
+    pub channel: usize,
+    /// Contraction that presses the lips fully together (`None`: no seal).
+    pub seal_k: Option<f32>,
+    /// Widest opening the pressed lips close, m.
+    pub max_gap: f32,
+    /// Rim columns: (upper lip rim vertex, lower lip rim vertex).
+    pub columns: Vec<(u32, u32)>,
+    /// Region vertices.
+    pub index: Vec<u32>,
+    /// Column of each region vertex.
+    pub column: Vec<u32>,
+    /// Weight of each region vertex: 1 on the lower lip's margin, 0 at
+    /// [`SEAL_REACH`] below it.
+    pub weight: Vec<f32>,
+}
+
+/// How far below the lower lip's margin the seal's pull reaches, m: the
+/// lower lip's height down to the labiomental fold (about 15 mm in adults;
+/// Farkas 1994, Anthropometry of the Head and Face, 2nd ed.).
+const SEAL_REACH: f32 = 0.015;
+
+impl LipSeal {
+    fn build(mesh: &HeadMesh, params: &FaceParams) -> LipSeal {
+        let (upper, lower) = (&mesh.rims.upper_lip, &mesh.rims.lower_lip);
+        let pos = |i: u32| mesh.positions[i as usize];
+        // Each lower rim vertex paired with the upper one nearest across.
+        let columns: Vec<(u32, u32)> = lower
+            .iter()
+            .filter_map(|&l| {
+                let u = upper.iter().copied().min_by(|&a, &b| {
+                    let d = |i: u32| (pos(i).x - pos(l).x).abs();
+                    d(a).total_cmp(&d(b))
+                })?;
+                Some((u, l))
+            })
+            .collect();
+        let mut seal = LipSeal {
+            channel: MuscleId {
+                kind: MuscleKind::OrbicularisOris,
+                side: Side::Centre,
+            }
+            .index()
+            .expect("orbicularis oris channel"),
+            seal_k: params.lips.seal_k.map(|k| k as f32),
+            max_gap: params.lips.seal_max_gap_m as f32,
+            columns,
+            ..LipSeal::default()
+        };
+        if seal.columns.is_empty() {
+            return seal;
+        }
+        let half_w = mesh.landmarks.mouth_corner.x;
+        let front = mesh.landmarks.mouth_corner.z - 0.01;
+        for (i, &p) in mesh.positions.iter().enumerate() {
+            if p.x.abs() > half_w || p.z < front {
+                continue;
+            }
+            let (c, rim) = seal
+                .columns
+                .iter()
+                .enumerate()
+                .map(|(c, &(_, l))| (c, pos(l)))
+                .min_by(|a, b| (a.1.x - p.x).abs().total_cmp(&(b.1.x - p.x).abs()))
+                .expect("columns");
+            let below = rim.y - p.y;
+            if !(0.0..SEAL_REACH).contains(&below) {
+                continue;
+            }
+            seal.index.push(i as u32);
+            seal.column.push(c as u32);
+            seal.weight.push(1.0 - smoothstep(0.0, SEAL_REACH, below));
+        }
+        // The lower rim's vertices last (see `apply`).
+        let on_rim = |i: u32| seal.columns.iter().any(|&(_, l)| l == i);
+        let mut order: Vec<usize> = (0..seal.index.len()).collect();
+        order.sort_by_key(|&n| on_rim(seal.index[n]));
+        seal.index = order.iter().map(|&n| seal.index[n]).collect();
+        seal.column = order.iter().map(|&n| seal.column[n]).collect();
+        seal.weight = order.iter().map(|&n| seal.weight[n]).collect();
+        seal
+    }
+
+    /// Move the lower lip's region so its margin closes the opening the
+    /// lips have gained over their rest, in each column, by the seal's
+    /// share of it, at most `max_gap` (O1).
+    fn apply(&self, mesh: &HeadMesh, k: f32, out: &mut [Vec3]) {
+        let Some(seal_k) = self.seal_k else {
+            return;
+        };
+        let s = (k / seal_k).clamp(0.0, 1.0); // (O1)
+        if s == 0.0 {
+            return;
+        }
+        // The lower rim's own vertices come last in the region, so every
+        // column's opening is read before its margin moves.
+        for ((&i, &c), &w) in self.index.iter().zip(&self.column).zip(&self.weight) {
+            let (u, l) = self.columns[c as usize];
+            let moved = |v: u32| out[v as usize] - mesh.positions[v as usize];
+            let gap = moved(u) - moved(l);
+            let close = gap * (s * (self.max_gap / gap.length().max(1e-9)).min(1.0)); // (O1)
+            out[i as usize] += w * close;
+        }
+    }
 }
 
 fn place(id: MuscleId, l: &Landmarks, p: &FaceParams) -> MuscleGeometry {
@@ -392,6 +506,7 @@ impl Rig {
             jaw_field,
             eye_centres: [eye_centre(l, Side::Left), eye_centre(l, Side::Right)],
             lid_y_per_k,
+            lip_seal: LipSeal::build(mesh, params),
         }
     }
 
@@ -425,7 +540,7 @@ impl Rig {
     }
 
     /// Deformed positions: rest + sum k_m field_m (F1, F6 linear in k) +
-    /// jaw rotation (F7), then the lid clearance step. `out.len()` must
+    /// jaw rotation (F7), then the lip seal (O1) and the lid clearance step. `out.len()` must
     /// equal the vertex count. No allocation.
     pub fn deform(&self, mesh: &HeadMesh, a: &Activation, out: &mut [Vec3]) {
         out.copy_from_slice(&mesh.positions);
@@ -444,6 +559,8 @@ impl Rig {
                 out[i as usize] += jaw_rotation(*r, theta * fr); // (F7)
             }
         }
+        self.lip_seal
+            .apply(mesh, a.k[self.lip_seal.channel], out);
         for (zone, &centre) in mesh.lid_zone.iter().zip(&self.eye_centres) {
             for &i in zone {
                 let p = &mut out[i as usize];
@@ -562,5 +679,58 @@ mod tests {
         println!("stretch ratio at the glabella: {waters:.2} unspread, {spread:.2} spread");
         assert!(waters > 10.0, "{waters}");
         assert!(spread < 0.25 * waters, "{spread} vs {waters}");
+    }
+
+    /// Opening between the lips' middles of `rig` deformed by `a`, m.
+    fn mid_gap(mesh: &HeadMesh, rig: &Rig, a: &Activation) -> f32 {
+        let mut out = vec![Vec3::ZERO; mesh.positions.len()];
+        rig.deform(mesh, a, &mut out);
+        let mid = |rim: &[u32]| rim[rim.len() / 2] as usize;
+        out[mid(&mesh.rims.upper_lip)].distance(out[mid(&mesh.rims.lower_lip)])
+    }
+
+    fn rig_with(mesh: &HeadMesh, seal_k: Option<f64>) -> Rig {
+        let mut params = FaceParams::default_params();
+        params.lips.seal_k = seal_k;
+        Rig::build(mesh, &params)
+    }
+
+    /// O1: anger's orbicularis oris (0.46, past the default seal's 0.4)
+    /// presses the lips together over its 3.5 degree jaw and its lower
+    /// lip depressor, which part them without the seal; at every mesh
+    /// resolution.
+    #[test]
+    fn pressed_lips_close_over_a_small_opening() {
+        for rows in [32, 48, 100] {
+            let mesh = HeadMesh::generate(MeshParams { rows });
+            let a = emotion_activation(&FaceParams::default_params(), Emotion::Anger, 1.0);
+            let rest = mid_gap(&mesh, &rig_with(&mesh, None), &Activation::default());
+            let open = mid_gap(&mesh, &rig_with(&mesh, None), &a);
+            let sealed = mid_gap(&mesh, &rig_with(&mesh, Some(0.4)), &a);
+            println!("{rows}: rest {rest}, open {open}, sealed {sealed}");
+            assert!(open > rest + 0.001, "{rows}: {open} vs rest {rest}");
+            assert!(sealed < rest + 0.0005, "{rows}: {sealed} vs rest {rest}");
+        }
+    }
+
+    /// O1: pressed lips close no more than `seal_max_gap_m` of a wide
+    /// opening (a pursed mouth with the jaw dropped still opens round),
+    /// and a relaxed orbicularis oris leaves the lips as the thesis has
+    /// them.
+    #[test]
+    fn the_seal_is_bounded_and_needs_the_muscle() {
+        let mesh = HeadMesh::generate(MeshParams { rows: 48 });
+        let (free, sealed) = (rig_with(&mesh, None), rig_with(&mesh, Some(0.4)));
+        let oo = sealed.lip_seal.channel;
+        let mut a = Activation {
+            jaw_deg: 15.0,
+            ..Activation::default()
+        };
+        assert_eq!(mid_gap(&mesh, &free, &a), mid_gap(&mesh, &sealed, &a));
+        a.k[oo] = 0.8;
+        let (open, closed) = (mid_gap(&mesh, &free, &a), mid_gap(&mesh, &sealed, &a));
+        assert!(open > 0.015, "{open}");
+        let max = FaceParams::default_params().lips.seal_max_gap_m as f32;
+        assert!((open - closed - max).abs() < 0.1 * max, "{open} -> {closed}");
     }
 }

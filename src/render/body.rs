@@ -296,10 +296,12 @@ const TORSO: [[f32; 4]; 13] = [
     [1.523, 0.055, 0.040, 0.050],
 ];
 /// Neck sections: height above the neck pivot, half-width, half-depth.
+/// Above the chin the neck is inside the head, slimmed so it stays behind
+/// the mouth's cavity (it would show through parted lips).
 #[rustfmt::skip]
-const NECK: [[f32; 3]; 5] = [
-    [-0.06, 0.066, 0.057], [-0.02, 0.062, 0.055], [0.01, 0.057, 0.054], [0.08, 0.056, 0.053],
-    [0.10, 0.045, 0.043],
+const NECK: [[f32; 3]; 6] = [
+    [-0.06, 0.066, 0.057], [-0.02, 0.062, 0.055], [0.01, 0.057, 0.054], [0.05, 0.056, 0.052],
+    [0.08, 0.050, 0.038], [0.10, 0.040, 0.030],
 ];
 /// Upper arm: distance below the shoulder, radii toward the front and across.
 #[rustfmt::skip]

@@ -503,8 +503,9 @@ fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
         material: Material::Plain,
     };
     // The cavity is dark and reaches past the mouth's corners, which lie
-    // well behind its middle, so no inside of the head shows through the
-    // opening; its front stays behind the teeth's.
+    // well behind its middle, so the neck inside the head never shows
+    // through the opening; with the teeth showing, its front stands behind
+    // the canines (the head's inside between is drawn dark, shader.wgsl).
     let cavity = |front: f32| {
         let half_d = 0.026;
         ellipsoid(
@@ -526,13 +527,12 @@ fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     let jaw = &model.rig.jaw;
     let theta = sim.face_state.activation.jaw_deg.to_radians();
     let lower_edge = lower_rest + crate::face::muscle::jaw_rotation(lower_rest - jaw.pivot, theta);
-    let (half_h, half_d) = (0.005, 0.005);
     // Lips bunched in front of the teeth (a tightened mouth pulls the skin
     // above and below the lips over them) must still cover them: the teeth
     // go back behind the nearest skin in front of them, if it is nearer
     // than their place on the bones (the surface has no lip thickness).
     let half_w = w * 0.62;
-    let (y0, y1) = (lower_edge.y - 2.0 * half_h, upper_edge.y + 2.0 * half_h);
+    let (y0, y1) = (lower_edge.y - 0.01, upper_edge.y + 0.01);
     let skin = face
         .iter()
         .map(|v| Vec3::from_array(v.pos))
@@ -545,22 +545,87 @@ fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     // lips' depth `d` is about g / (g + 2 d); scaled so a wide-open mouth
     // is fully lit.
     let lit = (1.2 * gap / (gap + 2.0 * INCISOR_DEPTH)).clamp(0.3, 1.0);
-    let teeth = [TEETH[0] * lit, TEETH[1] * lit, TEETH[2] * lit, 1.0];
-    let teeth_front = upper_edge.z.min(lower_edge.z) - push;
-    vec![
-        cavity(lips_back.min(teeth_front - 0.0015)),
-        ellipsoid(
-            upper_edge + Vec3::new(0.0, half_h, -half_d - push),
-            Vec3::new(half_w, half_h, half_d),
-            teeth,
-        ),
-        ellipsoid(
-            lower_edge + Vec3::new(0.0, -0.9 * half_h, -half_d - push),
-            Vec3::new(w * 0.55, half_h * 0.9, half_d),
-            teeth,
-        ),
-    ]
+    // The cavity stands behind the upper canines and behind the lower
+    // ones, which the jaw carries back as it opens (about 6 mm behind the
+    // lower incisors round their smaller arch).
+    let front = (upper_edge.z - CAVITY_BEHIND_TEETH).min(lower_edge.z - 0.007) - push;
+    let mut draws = vec![cavity(lips_back.min(front))];
+    // Each arch's teeth, midline outward, along a circle through the
+    // incisal midpoint; the lower arch turns with the jaw.
+    let arches = [
+        (upper_edge, &UPPER_TEETH, UPPER_ARCH_R, 1.0, 0.0),
+        (lower_rest, &LOWER_TEETH, LOWER_ARCH_R, -1.0, theta),
+    ];
+    for (edge, teeth, radius, up, turn) in arches {
+        let mut s = 0.0;
+        for &(width, height) in teeth.iter() {
+            let phi = (s + width / 2.0) / radius;
+            s += width;
+            let back = radius * (1.0 - phi.cos());
+            // Teeth further round the arch sit deeper in the mouth's shade.
+            let shade = lit * (1.0 - back / 0.02).clamp(0.45, 1.0);
+            let colour = [TEETH[0] * shade, TEETH[1] * shade, TEETH[2] * shade, 1.0];
+            for side in [-1.0f32, 1.0] {
+                let local = Vec3::new(
+                    side * radius * phi.sin(),
+                    up * height / 2.0,
+                    -back - TOOTH_HALF_DEPTH,
+                );
+                let root = edge + local;
+                let centre = root + crate::face::muscle::jaw_rotation(root - jaw.pivot, turn)
+                    - Vec3::Z * push;
+                let rotation = Quat::from_rotation_x(turn) * Quat::from_rotation_y(side * phi);
+                // A crown is a flat-fronted block; the narrow gaps between
+                // blocks show the cavity as the lines between teeth.
+                draws.push(Draw {
+                    mesh: MeshKey::Cube,
+                    model: face_frame
+                        * Mat4::from_scale_rotation_translation(
+                            Vec3::new(width * 0.46, height / 2.0, TOOTH_HALF_DEPTH),
+                            rotation,
+                            centre,
+                        ),
+                    color: colour,
+                    material: Material::Plain,
+                });
+            }
+        }
+    }
+    draws
 }
+
+/// Crown width (along the arch) and height of each tooth from the midline
+/// out to the second premolar, m (Wheeler's mean crown dimensions: Nelson
+/// 2015, Wheeler's Dental Anatomy, 10th ed.). Only what the lips' opening
+/// frames is seen; molars never are.
+const UPPER_TEETH: [(f32, f32); 5] = [
+    (0.0085, 0.0105),
+    (0.0065, 0.0090),
+    (0.0075, 0.0100),
+    (0.0070, 0.0085),
+    (0.0065, 0.0080),
+];
+const LOWER_TEETH: [(f32, f32); 5] = [
+    (0.0050, 0.0090),
+    (0.0055, 0.0095),
+    (0.0070, 0.0110),
+    (0.0070, 0.0085),
+    (0.0070, 0.0080),
+];
+/// Radii of the circles the front teeth follow, m: the upper canines'
+/// tips lie about 17 mm either side of the midline and 9 mm behind the
+/// incisors (intercanine width about 34 mm, lower about 26 mm: Bishara et
+/// al. 1997, Am. J. Orthod. 111:401), a circle of radius 21 mm (16 mm).
+const UPPER_ARCH_R: f32 = 0.021;
+const LOWER_ARCH_R: f32 = 0.016;
+/// Half the thickness drawn of a crown, front to back, m (our choice:
+/// only the front face shows).
+const TOOTH_HALF_DEPTH: f32 = 0.003;
+
+/// How far the cavity's front stands behind the upper incisors' when the
+/// teeth show, m: behind the canines' crowns (about 8 mm back round the
+/// arch, 6 mm thick), so the upper front teeth are all seen.
+const CAVITY_BEHIND_TEETH: f32 = 0.014;
 
 /// How far the upper incisors reach below the upper lip's rest edge, m:
 /// about 2 mm in young men with the lips apart at rest (Vig & Brundo 1978,

@@ -63,8 +63,9 @@ struct Globals {
     fill_dir: [f32; 4],
     /// x: the floor's light, the same at every point of it.
     floor_light: [f32; 4],
-    /// The face's lips, brows and hair (linear RGB).
-    face_regions: [[f32; 4]; 3],
+    /// The face's lips, brows and hair, and the inside of the mouth
+    /// (linear RGB).
+    face_regions: [[f32; 4]; 4],
 }
 
 #[repr(C)]
@@ -630,7 +631,7 @@ impl Renderer {
             floor_light: [floor_light, 0.0, 0.0, 0.0],
             face_regions: {
                 let s = &crate::face::appearance::FaceStyle::DEFAULT;
-                [s.lips, s.brow, s.hair].map(|c| [c[0], c[1], c[2], 1.0])
+                [s.lips, s.brow, s.hair, s.inside].map(|c| [c[0], c[1], c[2], 1.0])
             },
         };
         self.queue

@@ -10,7 +10,7 @@ struct Globals {
     // x: the floor's light (ambient + diffuse on an upward normal).
     floor_light: vec4<f32>,
     // The face's lips, brows and hair.
-    face_regions: array<vec4<f32>, 3>,
+    face_regions: array<vec4<f32>, 4>,
 };
 
 struct Instance {
@@ -105,7 +105,11 @@ fn eye_colour(local: vec3<f32>) -> vec3<f32> {
     if (c > IRIS_COS) {
         return vec3<f32>(0.05, 0.07, 0.10); // limbal ring
     }
-    return vec3<f32>(0.92, 0.90, 0.86);
+    // Sclera: white by the iris, greyer and pinker toward the eye's
+    // corners, where it curves away under the lids' shade and shows its
+    // vessels (our choice; a uniform white reads as a painted disc).
+    let t = clamp((IRIS_COS - c) / (IRIS_COS - 0.45), 0.0, 1.0);
+    return mix(vec3<f32>(0.90, 0.88, 0.84), vec3<f32>(0.70, 0.62, 0.60), t * t);
 }
 
 // Skin: light wraps past the terminator (scattered under the surface)
@@ -143,7 +147,16 @@ fn fs_body(v: PaintedOut) -> @location(0) vec4<f32> {
 
 // The face: skin with its painted borders and expression wrinkles.
 @fragment
-fn fs_face(v: PaintedOut) -> @location(0) vec4<f32> {
+fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    // The face is wound counter-clockwise seen from outside: a back face
+    // within about 2.4 cm of the lips (`paint.x` is in units of their
+    // 1.2 mm soft border) is the head's inside seen through the parted
+    // lips, the mouth's dark inside (the cavity behind the teeth stands
+    // for the rest). Elsewhere (a lid's inside at an eye's corner) it is
+    // lit as skin.
+    if (!front && v.paint.x > -20.0) {
+        return vec4<f32>(g.face_regions[3].rgb, 1.0);
+    }
     let view_dir = normalize(g.camera.xyz - v.world);
     var n = normalize(v.normal);
     if (dot(n, view_dir) < 0.0) {
@@ -185,8 +198,13 @@ fn fs_face(v: PaintedOut) -> @location(0) vec4<f32> {
         let vy = 0.25 * (1.0 - cos(py)) * (1.0 - cos(py));
         tilt = mix(inverseSqrt(1.0 + 0.5 * v.wrinkle.x * v.wrinkle.x), 1.0, rx)
             * mix(inverseSqrt(1.0 + 0.5 * v.wrinkle.y * v.wrinkle.y), 1.0, ry);
-        furrow = min(v.wrinkle.x, 1.0) * mix(0.375, vx, rx)
-            + min(v.wrinkle.y, 1.0) * mix(0.375, vy, ry);
+        // Where both families fold (the glabella under procerus and
+        // corrugator) the deeper furrow's shadow holds: crossing folds
+        // do not shade the skin twice.
+        furrow = max(
+            min(v.wrinkle.x, 1.0) * mix(0.375, vx, rx),
+            min(v.wrinkle.y, 1.0) * mix(0.375, vy, ry),
+        );
     }
     return vec4<f32>(skin(base, n, view_dir, (1.0 - 0.33 * furrow) * tilt), 1.0);
 }

@@ -95,8 +95,10 @@ pub struct Model {
 impl Model {
     /// Set what `profile` fixes, in the parameters
     /// ([`Params::apply_profile`]) and the face's blinks (the seed blinks
-    /// only when neutral, at the thesis's rate whatever the situation) and
-    /// skin (the seed's skin never wrinkles).
+    /// only when neutral, at the thesis's rate whatever the situation), lids
+    /// (the thesis's linear lid), skin (it never wrinkles nor spreads a
+    /// pull) and lips (they part with the jaw whatever orbicularis oris
+    /// does).
     pub fn apply_profile(&mut self, profile: Profile) {
         self.params.apply_profile(profile);
         if profile != Profile::Seed {
@@ -110,10 +112,14 @@ impl Model {
         seed.blink.levator_max_raise_m = None;
         seed.skin.wrinkle_spacing_m = 0.0;
         seed.skin.pull_spread_m = 0.0;
+        seed.lips.seal_k = None;
         if seed != self.face.params {
-            // The face is shared: copied once here, not per run (the scene
-            // loader applies the profile to the face it shares).
-            Arc::make_mut(&mut self.face).params = seed;
+            // The face is shared: rebuilt once here, not per run (the scene
+            // loader applies the profile to the face it shares). The rig's
+            // fields and the wrinkles' rest frames depend on the skin and
+            // lip parameters, so the whole face is rebuilt on its mesh.
+            let mesh = self.face.mesh.clone();
+            self.face = Arc::new(crate::face::Face::from_mesh(mesh, seed));
         }
     }
 
@@ -193,4 +199,29 @@ fn default_mass() -> f64 {
 
 fn yes() -> bool {
     true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::face::mesh::MeshParams;
+    use crate::face::params::FaceParams;
+
+    /// The seed profile's face is the thesis's all through: the rig is
+    /// rebuilt without the skin's spread (S1) and the lip seal (O1), not
+    /// only its parameters changed.
+    #[test]
+    fn the_seed_profile_rebuilds_the_face() {
+        let face = Arc::new(Face::new(MeshParams { rows: 32 }, FaceParams::default_params()));
+        assert!(face.rig.lip_seal.seal_k.is_some());
+        let mut model = Model::new(face, Params::default(), 0);
+        model.apply_profile(Profile::Seed);
+        let f = &model.face;
+        assert_eq!(f.rig.lip_seal.seal_k, None);
+        for ((_, g), field) in f.rig.muscles.iter().zip(&f.rig.fields) {
+            for (&i, d) in field.index.iter().zip(&field.delta) {
+                assert_eq!(*d, g.displacement(f.mesh.positions[i as usize], 1.0));
+            }
+        }
+    }
 }
