@@ -75,7 +75,7 @@ const HAIRLINE: [(f32, f32); 9] = [
 /// Half-width of each region's soft border, m: the vermilion's border is
 /// sharp, a brow's hairs thin out over a millimetre or so, the hairline
 /// over more.
-const SOFT: [f32; 3] = [0.0012, 0.0013, 0.0015];
+const SOFT: [f32; 3] = [0.0012, 0.0018, 0.0015];
 
 /// The lips' colour reaches at least this far from the mouth's opening, m:
 /// the opening's edge is lip all round, even at the corners, where the
@@ -144,14 +144,30 @@ fn brow(p: Vec3, l: &Landmarks, min_half: f32) -> (f32, f32) {
         .windows(2)
         .position(|w| x <= w[1].x)
         .unwrap_or(line.len() - 2);
+    // A smooth arch through the points (cubic Hermite, each point's slope
+    // that of the chord between its neighbours): a brow has no corner at
+    // its peak.
     let (a, b) = (line[k], line[k + 1]);
-    let f = ((x - a.x) / (b.x - a.x)).clamp(0.0, 1.0);
-    let height = p.y - (a.y + (b.y - a.y) * f);
+    let slope = |i: usize| {
+        let (u, v) = (line[i.saturating_sub(1)], line[(i + 1).min(line.len() - 1)]);
+        (v.y - u.y) / (v.x - u.x)
+    };
+    let dx = b.x - a.x;
+    let f = ((x - a.x) / dx).clamp(0.0, 1.0);
+    let (f2, f3) = (f * f, f * f * f);
+    let y = a.y * (2.0 * f3 - 3.0 * f2 + 1.0)
+        + slope(k) * dx * (f3 - 2.0 * f2 + f)
+        + b.y * (3.0 * f2 - 2.0 * f3)
+        + slope(k + 1) * dx * (f3 - f2);
+    let height = p.y - y;
     let t = ((x - x0) / (x1 - x0)).clamp(0.0, 1.0);
+    // The head ends bluntly, an elliptic cap over its last 3 mm (a brow's
+    // head is its broadest, squarest part); the tail tapers to a point.
+    let d = ((x - x0 + 0.002) / 0.003).clamp(0.0, 1.0);
+    let head = 0.0058 * (d * (2.0 - d)).sqrt() - (x0 - 0.002 - x).max(0.0);
     let half = (0.0058 - 0.0032 * t)
         .max(min_half)
-        // Rounded off past either end.
-        .min(x - x0 + 0.002)
+        .min(head)
         .min(x1 - x + 0.0015)
         // Only the front of the face (not the inside of the lid shells).
         .min(p.z - l.brow_outer.z + 0.015);
