@@ -306,9 +306,16 @@ impl Jaw {
 /// 6th-order cosine series: below about 20 deg exact to single precision,
 /// and no trigonometric call per vertex (the rig's hot loop uses it).
 pub fn jaw_rotation(r: Vec3, alpha: f32) -> Vec3 {
+    // Series coefficients as reciprocals: a float division by a constant
+    // stays a division, several times a multiplication's cost.
+    const S3: f32 = 1.0 / 6.0;
+    const S5: f32 = 1.0 / 20.0;
+    const S7: f32 = 1.0 / 42.0;
+    const C4: f32 = 1.0 / 12.0;
+    const C6: f32 = 1.0 / 30.0;
     let x2 = alpha * alpha;
-    let s = alpha * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0)));
-    let c = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0));
+    let s = alpha * (1.0 - x2 * S3 * (1.0 - x2 * S5 * (1.0 - x2 * S7)));
+    let c = 1.0 - x2 * 0.5 * (1.0 - x2 * C4 * (1.0 - x2 * C6));
     Vec3::new(0.0, r.y * (c - 1.0) - r.z * s, r.y * s + r.z * (c - 1.0))
 }
 

@@ -306,9 +306,11 @@ fn lid(side: Side, l: &Landmarks, p: &FaceParams) -> LidSphincter {
 /// The lids (each eye's lid zone) keep their own values: their margins are
 /// held by the tarsal plates, and a brow's pull must not leak into them
 /// (face.md table 4.1: frontalis does not move the lids).
-/// Displacements per unit contraction smaller than this (1 um) are left
-/// out of a spread field.
-const SPREAD_FLOOR: f32 = 1e-6;
+/// Displacements per unit contraction smaller than this (20 um, a
+/// fortieth of a pixel of the face filling a 1080-pixel picture) are left
+/// out of a spread field: the spread's far tail, a sixth of its entries,
+/// which every deformation would otherwise pay for.
+const SPREAD_FLOOR: f32 = 2e-5;
 
 struct Spread {
     /// Per vertex: its neighbours and their cotangent weights.
@@ -565,9 +567,10 @@ impl Rig {
             for &i in zone {
                 let p = &mut out[i as usize];
                 let r = *p - centre;
-                let len = r.length();
-                if len < LID_CLEARANCE && len > 0.0 {
-                    *p = centre + r * (LID_CLEARANCE / len);
+                // Squared first: most of the zone is clear, no root taken.
+                let len2 = r.length_squared();
+                if len2 < LID_CLEARANCE * LID_CLEARANCE && len2 > 0.0 {
+                    *p = centre + r * (LID_CLEARANCE / len2.sqrt());
                 }
             }
         }
