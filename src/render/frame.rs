@@ -73,6 +73,9 @@ pub enum Material {
     /// A skinned body (closed; its back faces are skipped): skin light,
     /// one painted border (the vest's hem).
     Body = 5,
+    /// Hair seen as strands (the lashes): lit with the instance colour,
+    /// matte (a highlight on strands thinner than a pixel greys them).
+    Hair = 6,
 }
 
 /// One mesh instance.
@@ -345,7 +348,7 @@ impl Frame {
             mesh: MeshKey::Lashes,
             model: face_frame,
             color: WHITE,
-            material: Material::Plain,
+            material: Material::Hair,
         });
         draws.extend([
             Draw {
@@ -654,7 +657,7 @@ const EAR: [f32; 4] = [SKIN[0] * 1.04, SKIN[1] * 0.95, SKIN[2] * 0.95, 1.0];
 /// Lashes, m: upper and lower length at mid-lid (Thibaut et al. 2010,
 /// Br. J. Dermatol. 163:1023: upper 8-12 mm, lower 6-8 mm; shorter here,
 /// seen curled).
-const LASH_LENGTH: [f32; 2] = [0.007, 0.0018];
+const LASH_LENGTH: [f32; 2] = [0.006, 0.0018];
 /// Thickness of the lid at its margin, m (our choice: a thin ledge that
 /// reads as the lid's edge).
 const LID_THICKNESS: f32 = 0.0018;
@@ -672,7 +675,11 @@ const LASH: [f32; 4] = {
 const LASH_SPACING: f32 = 0.0008;
 /// Width of a lash at its root, m (a lash is about 0.1 mm thick; drawn
 /// wider, as several lashes of a row overlap).
-const LASH_WIDTH: f32 = 0.0007;
+const LASH_WIDTH: f32 = 0.0008;
+/// Depth of the upper lashes' dense roots along the lid's edge, m (our
+/// choice: about a millimetre, where the lashes stand in two or three rows,
+/// and the lid's edge reads dark in any light).
+const LASH_ROOT: f32 = 0.0013;
 
 /// Eyelashes and lid margins: a curled fringe of thin tapered strands on
 /// each lid rim and a narrow ledge behind it (the lid's thickness), rooted
@@ -717,6 +724,24 @@ fn lashes(rims: &crate::face::mesh::Rims, face: &[Vertex]) -> Vec<Vertex> {
             at[i] = at[i - 1] + vertex(rim[i]).0.distance(vertex(rim[i - 1]).0);
         }
         let total = at[n - 1];
+        // The upper lashes' roots: dense enough to read as one dark line
+        // along the lid's edge (what the eye's outline is at a distance),
+        // thinning to the corners.
+        if lift > 0.0 {
+            let band = |i: usize| {
+                let (p, nrm) = vertex(rim[i]);
+                let xi = 2.0 * at[i] / total.max(1e-9) - 1.0;
+                let out_dir = (nrm + Vec3::Z).normalize_or(Vec3::Z);
+                let width = LASH_ROOT * (1.0 - xi * xi).max(0.0).sqrt().sqrt();
+                [p, p + (out_dir + Vec3::Y).normalize_or(Vec3::Y) * width]
+            };
+            for i in 0..n - 1 {
+                let (a, b) = (band(i), band(i + 1));
+                let quad = [a[0], b[0], b[1], a[0], b[1], a[1]];
+                let normal = (b[0] - a[0]).cross(a[1] - a[0]).normalize_or(Vec3::Z);
+                out.extend(quad.map(|p| Vertex::coloured(p, normal, LASH)));
+            }
+        }
         let outer_last = vertex(rim[n - 1]).0.x.abs() > vertex(rim[0]).0.x.abs();
         let count = (total / LASH_SPACING) as usize;
         let mut seg = 0;
@@ -744,7 +769,8 @@ fn lashes(rims: &crate::face::mesh::Rims, face: &[Vertex]) -> Vec<Vertex> {
             let lean = outward * (0.25 * outer.max(0.0) + 0.08 * jitter(78.233));
             let out_dir = (nrm + Vec3::Z).normalize_or(Vec3::Z);
             let mid = root + (out_dir * 0.6 + lean * 0.3) * l + Vec3::Y * lift * l * 0.08;
-            let tip = root + (out_dir * 0.9 + lean) * l + Vec3::Y * lift * l * 0.35;
+            // Curled: out from the lid, then up (down for the lower lid).
+            let tip = root + (out_dir * 0.7 + lean) * l + Vec3::Y * lift * l * 0.6;
             let w = along * (0.5 * LASH_WIDTH);
             let strand = [
                 [root - w, root + w, mid + w * 0.5],

@@ -18,7 +18,7 @@ struct Instance {
     // Inverse transpose of the model's upper 3x3, in a mat4 for alignment.
     normal: mat4x4<f32>,
     color: vec4<f32>,
-    // x: material (0 plain, 1 eye, 2 floor, 3 skin; 4 face and 5 body have
+    // x: material (0 plain, 1 eye, 2 floor, 3 skin, 6 hair; 4 face and 5 body have
     // their own fragment stages, fs_face and fs_body).
     params: vec4<f32>,
 };
@@ -238,6 +238,9 @@ fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
     if (material == 1u) {
         base = eye_colour(v.local);
         shine = 0.8;
+    }
+    if (material == 6u) {
+        shine = 0.0;
     }
     let diffuse = 0.85 * max(dot(n, key), 0.0) + 0.35 * max(dot(n, fill), 0.0);
     let ambient = 0.22;
