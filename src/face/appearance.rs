@@ -104,14 +104,34 @@ fn mix(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {
     [0, 1, 2].map(|k| a[k] + (b[k] - a[k]) * t)
 }
 
+/// A smooth curve through the points `(x, y)` (x increasing) at `x`:
+/// cubic Hermite, each inner point's slope that of the chord between its
+/// neighbours, the ends' that of their own chord, or `start_slope` at the
+/// first point; clamped to the ends' segments outside.
+fn smooth_curve(points: &[(f32, f32)], x: f32, start_slope: Option<f32>) -> f32 {
+    let n = points.len();
+    let k = points.windows(2).position(|w| x <= w[1].0).unwrap_or(n - 2);
+    let slope = |i: usize| match (i, start_slope) {
+        (0, Some(m)) => m,
+        _ => {
+            let (u, v) = (points[i.saturating_sub(1)], points[(i + 1).min(n - 1)]);
+            (v.1 - u.1) / (v.0 - u.0)
+        }
+    };
+    let ((x0, y0), (x1, y1)) = (points[k], points[k + 1]);
+    let dx = x1 - x0;
+    let f = ((x - x0) / dx).clamp(0.0, 1.0);
+    let (f2, f3) = (f * f, f * f * f);
+    y0 * (2.0 * f3 - 3.0 * f2 + 1.0)
+        + slope(k) * dx * (f3 - 2.0 * f2 + f)
+        + y1 * (3.0 * f2 - 2.0 * f3)
+        + slope(k + 1) * dx * (f3 - f2)
+}
+
+/// The hairline's height at an azimuth: level where it crosses the
+/// midline (no corner there), smooth all round.
 fn hairline(azimuth_deg: f32) -> f32 {
-    let a = azimuth_deg.abs().min(180.0);
-    let k = HAIRLINE
-        .windows(2)
-        .position(|w| a <= w[1].0)
-        .unwrap_or(HAIRLINE.len() - 2);
-    let ((a0, h0), (a1, h1)) = (HAIRLINE[k], HAIRLINE[k + 1]);
-    h0 + (h1 - h0) * (a - a0) / (a1 - a0)
+    smooth_curve(&HAIRLINE, azimuth_deg.abs().min(180.0), Some(0.0))
 }
 
 /// Signed height of the point above the hairline, m.
@@ -140,26 +160,8 @@ fn brow(p: Vec3, l: &Landmarks, min_half: f32) -> (f32, f32) {
     ];
     let (x0, x1) = (line[0].x, line[4].x);
     let x = p.x.abs();
-    let k = line
-        .windows(2)
-        .position(|w| x <= w[1].x)
-        .unwrap_or(line.len() - 2);
-    // A smooth arch through the points (cubic Hermite, each point's slope
-    // that of the chord between its neighbours): a brow has no corner at
-    // its peak.
-    let (a, b) = (line[k], line[k + 1]);
-    let slope = |i: usize| {
-        let (u, v) = (line[i.saturating_sub(1)], line[(i + 1).min(line.len() - 1)]);
-        (v.y - u.y) / (v.x - u.x)
-    };
-    let dx = b.x - a.x;
-    let f = ((x - a.x) / dx).clamp(0.0, 1.0);
-    let (f2, f3) = (f * f, f * f * f);
-    let y = a.y * (2.0 * f3 - 3.0 * f2 + 1.0)
-        + slope(k) * dx * (f3 - 2.0 * f2 + f)
-        + b.y * (3.0 * f2 - 2.0 * f3)
-        + slope(k + 1) * dx * (f3 - f2);
-    let height = p.y - y;
+    // A smooth arch through the points: a brow has no corner at its peak.
+    let height = p.y - smooth_curve(&line.map(|q| (q.x, q.y)), x, None);
     let t = ((x - x0) / (x1 - x0)).clamp(0.0, 1.0);
     // The head ends bluntly, an elliptic cap over its last 3 mm (a brow's
     // head is its broadest, squarest part); the tail tapers to a point.

@@ -561,8 +561,7 @@ impl Rig {
                 out[i as usize] += jaw_rotation(*r, theta * fr); // (F7)
             }
         }
-        self.lip_seal
-            .apply(mesh, a.k[self.lip_seal.channel], out);
+        self.lip_seal.apply(mesh, a.k[self.lip_seal.channel], out);
         for (zone, &centre) in mesh.lid_zone.iter().zip(&self.eye_centres) {
             for &i in zone {
                 let p = &mut out[i as usize];
@@ -734,6 +733,9 @@ mod tests {
         let (open, closed) = (mid_gap(&mesh, &free, &a), mid_gap(&mesh, &sealed, &a));
         assert!(open > 0.015, "{open}");
         let max = FaceParams::default_params().lips.seal_max_gap_m as f32;
-        assert!((open - closed - max).abs() < 0.1 * max, "{open} -> {closed}");
+        assert!(
+            (open - closed - max).abs() < 0.1 * max,
+            "{open} -> {closed}"
+        );
     }
 }

@@ -374,7 +374,6 @@ mod tests {
         assert_eq!(buckle(0.2, 0.1, 0.25), [0.0, 0.0]);
     }
 
-
     #[test]
     fn one_way_squeeze_buckles_across_it() {
         // Squeezing vertically by 40 %: on the forehead the vertical family

@@ -43,6 +43,9 @@ pub enum MeshKey {
     Lashes,
     /// A left ear ([`super::geometry::ear`]; mirrored for the right).
     Ear,
+    /// A tooth's crown: a rounded box of half extent 1
+    /// ([`super::geometry::rounded_box`]).
+    Tooth,
 }
 
 impl MeshKey {
@@ -52,7 +55,7 @@ impl MeshKey {
     pub fn is_closed(self) -> bool {
         matches!(
             self,
-            MeshKey::Sphere | MeshKey::Cube | MeshKey::Capsule { .. }
+            MeshKey::Sphere | MeshKey::Cube | MeshKey::Tooth | MeshKey::Capsule { .. }
         )
     }
 }
@@ -578,10 +581,10 @@ fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
                 let centre = root + crate::face::muscle::jaw_rotation(root - jaw.pivot, turn)
                     - Vec3::Z * push;
                 let rotation = Quat::from_rotation_x(turn) * Quat::from_rotation_y(side * phi);
-                // A crown is a flat-fronted block; the narrow gaps between
-                // blocks show the cavity as the lines between teeth.
+                // A crown is a flat-fronted, rounded block; the narrow gaps
+                // between them show the cavity as the lines between teeth.
                 draws.push(Draw {
-                    mesh: MeshKey::Cube,
+                    mesh: MeshKey::Tooth,
                     model: face_frame
                         * Mat4::from_scale_rotation_translation(
                             Vec3::new(width * 0.46, height / 2.0, TOOTH_HALF_DEPTH),

@@ -107,6 +107,32 @@ pub fn capsule(half_height: f32, radius: f32) -> MeshData {
     lathe(&profile)
 }
 
+/// Rounded box of half extent 1: the superellipsoid
+/// `|x|^p + |y|^p + |z|^p = 1` (a sphere at `p = 2`, nearer a cube as `p`
+/// grows), the unit sphere's vertices carried onto it with its exact
+/// normals.
+pub fn rounded_box(p: f32) -> MeshData {
+    let mut m = sphere();
+    let carry = |v: f32, e: f32| v.signum() * v.abs().powf(e);
+    for v in &mut m.vertices {
+        let s = Vec3::from_array(v.pos);
+        let q = Vec3::new(
+            carry(s.x, 2.0 / p),
+            carry(s.y, 2.0 / p),
+            carry(s.z, 2.0 / p),
+        );
+        // The surface's gradient: sign(q) |q|^(p - 1) per axis.
+        let n = Vec3::new(
+            carry(q.x, p - 1.0),
+            carry(q.y, p - 1.0),
+            carry(q.z, p - 1.0),
+        );
+        v.pos = q.to_array();
+        v.normal = n.normalize_or(s).to_array();
+    }
+    m
+}
+
 /// Unit cube (half extent 1) with flat faces.
 pub fn cube() -> MeshData {
     let mut m = MeshData::default();
@@ -208,7 +234,7 @@ mod tests {
 
     #[test]
     fn sphere_and_cube_are_closed_index_lists() {
-        for m in [sphere(), cube(), floor()] {
+        for m in [sphere(), cube(), floor(), rounded_box(6.0)] {
             assert_eq!(m.indices.len() % 3, 0);
             assert!(m.indices.iter().all(|&i| (i as usize) < m.vertices.len()));
         }

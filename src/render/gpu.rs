@@ -469,6 +469,8 @@ impl Renderer {
         r.upload(MeshKey::Cube, &geometry::cube());
         r.upload(MeshKey::Floor, &geometry::floor());
         r.upload(MeshKey::Ear, &geometry::ear());
+        // Crowns: boxy, with edges rounded over about a fifth of their size.
+        r.upload(MeshKey::Tooth, &geometry::rounded_box(5.0));
         r
     }
 

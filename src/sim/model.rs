@@ -212,7 +212,10 @@ mod tests {
     /// only its parameters changed.
     #[test]
     fn the_seed_profile_rebuilds_the_face() {
-        let face = Arc::new(Face::new(MeshParams { rows: 32 }, FaceParams::default_params()));
+        let face = Arc::new(Face::new(
+            MeshParams { rows: 32 },
+            FaceParams::default_params(),
+        ));
         assert!(face.rig.lip_seal.seal_k.is_some());
         let mut model = Model::new(face, Params::default(), 0);
         model.apply_profile(Profile::Seed);
