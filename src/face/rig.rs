@@ -123,7 +123,7 @@ pub struct LipSeal {
     /// Column of each region vertex.
     pub column: Vec<u32>,
     /// Weight of each region vertex: 1 on the lower lip's margin, 0 at
-    /// [`SEAL_REACH`] below it.
+    /// [`SEAL_REACH`] below it and at the mouth's corners.
     pub weight: Vec<f32>,
 }
 
@@ -131,6 +131,12 @@ pub struct LipSeal {
 /// lower lip's height down to the labiomental fold (about 15 mm in adults;
 /// Farkas 1994, Anthropometry of the Head and Face, 2nd ed.).
 const SEAL_REACH: f32 = 0.015;
+
+/// Opening over which the seal takes hold, m: it closes a column whose
+/// upper margin has risen from the lower by this much or more, none whose
+/// lips press into each other (a smooth onset, so neighbouring columns
+/// move alike).
+const SEAL_SOFT: f32 = 0.001;
 
 impl LipSeal {
     fn build(mesh: &HeadMesh, params: &FaceParams) -> LipSeal {
@@ -181,7 +187,11 @@ impl LipSeal {
             }
             seal.index.push(i as u32);
             seal.column.push(c as u32);
-            seal.weight.push(1.0 - smoothstep(0.0, SEAL_REACH, below));
+            // Tapered to nothing at the mouth's corners, beyond which the
+            // skin is not moved: a coarse mesh would fold there.
+            let across = 1.0 - smoothstep(0.6 * half_w, half_w, p.x.abs());
+            seal.weight
+                .push((1.0 - smoothstep(0.0, SEAL_REACH, below)) * across);
         }
         // The lower rim's vertices last (see `apply`).
         let on_rim = |i: u32| seal.columns.iter().any(|&(_, l)| l == i);
@@ -210,7 +220,10 @@ impl LipSeal {
             let (u, l) = self.columns[c as usize];
             let moved = |v: u32| out[v as usize] - mesh.positions[v as usize];
             let gap = moved(u) - moved(l);
-            let close = gap * (s * (self.max_gap / gap.length().max(1e-9)).min(1.0)); // (O1)
+            // Only an opening is closed (the upper margin risen from the
+            // lower); lips pressed into each other are left as they are.
+            let opening = smoothstep(0.0, SEAL_SOFT, gap.y);
+            let close = gap * (s * opening * (self.max_gap / gap.length().max(1e-9)).min(1.0)); // (O1)
             out[i as usize] += w * close;
         }
     }

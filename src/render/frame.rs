@@ -512,17 +512,20 @@ fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     // well behind its middle, so the neck inside the head never shows
     // through the opening; with the teeth showing, its front stands behind
     // the canines (the head's inside between is drawn dark, shader.wgsl).
-    let cavity = |front: f32| {
+    // Behind closed lips it only darkens the seam and stays within the
+    // mouth's width: that close to the lips a wider one would come out
+    // through the cheeks beside the corners.
+    let cavity = |front: f32, reach: f32| {
         let half_d = 0.026;
         ellipsoid(
             Vec3::new(0.0, (upper.y + lower.y) / 2.0, front - half_d),
-            Vec3::new(w * 1.6, 0.02 + gap * 0.6, half_d),
+            Vec3::new(w * reach, 0.02 + gap * 0.6, half_d),
             MOUTH,
         )
     };
     let lips_back = upper.z.min(lower.z) - 0.006;
     if gap < TEETH_SHOW_GAP {
-        return vec![cavity(lips_back)];
+        return vec![cavity(lips_back, 1.0)];
     }
     // Incisal edges at rest: the upper one a little below the upper lip's
     // rest edge and behind it; the lower one overlapped by the upper
@@ -555,7 +558,7 @@ fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     // ones, which the jaw carries back as it opens (about 6 mm behind the
     // lower incisors round their smaller arch).
     let front = (upper_edge.z - CAVITY_BEHIND_TEETH).min(lower_edge.z - 0.007) - push;
-    let mut draws = vec![cavity(lips_back.min(front))];
+    let mut draws = vec![cavity(lips_back.min(front), 1.6)];
     // Each arch's teeth, midline outward, along a circle through the
     // incisal midpoint; the lower arch turns with the jaw.
     let arches = [
