@@ -57,7 +57,9 @@ pub enum Profile {
     Human,
     /// The seed papers' laws as printed, for their figures: no latencies
     /// (vision, saccades, pursuit, VOR, guard), pursuit gain 1, no onset
-    /// capture, blinks only in the neutral face at the thesis's rate.
+    /// capture, blinks only in the neutral face at the thesis's rate, and
+    /// the thesis's face: its linear lid, Waters' fields unspread, no
+    /// wrinkles, lips that part with the jaw.
     Seed,
 }
 
