@@ -91,14 +91,6 @@ fn vs_painted(
 
 fn eye_colour(local: vec3<f32>) -> vec3<f32> {
     let d = normalize(local);
-    // The upper lid shades the eyeball below its margin (the lids follow
-    // the eye's pitch, so the margin stays near the same local height, a
-    // little over the iris's top): a soft shadow fading down from it.
-    let lid = 1.0 - 0.35 * smoothstep(0.1, 0.55, d.y);
-    return eye_albedo(d) * lid;
-}
-
-fn eye_albedo(d: vec3<f32>) -> vec3<f32> {
     let c = d.z;
     if (c > PUPIL_COS) {
         return vec3<f32>(0.005, 0.005, 0.008);
@@ -117,7 +109,7 @@ fn eye_albedo(d: vec3<f32>) -> vec3<f32> {
     // corners, where it curves away under the lids' shade and shows its
     // vessels (our choice; a uniform white reads as a painted disc).
     let t = clamp((IRIS_COS - c) / (IRIS_COS - 0.45), 0.0, 1.0);
-    return mix(vec3<f32>(0.88, 0.86, 0.82), vec3<f32>(0.70, 0.62, 0.60), t * t);
+    return mix(vec3<f32>(0.90, 0.88, 0.84), vec3<f32>(0.70, 0.62, 0.60), t * t);
 }
 
 // Skin: light wraps past the terminator (scattered under the surface)
