@@ -405,5 +405,26 @@ mod tests {
             e.contains("wrinkle_spacing_m") && e.contains("must be in"),
             "{e}"
         );
+        // The lip seal (O1): a negative or NaN bound is refused, named.
+        let with_lips = |lips: &str| {
+            let end = DEFAULT_RON
+                .trim_end()
+                .strip_suffix(')')
+                .expect("a RON struct");
+            format!("{end}    lips: ({lips}),\n)\n")
+        };
+        let ok = FaceParams::from_ron(&with_lips("seal_k: None")).unwrap();
+        assert_eq!(ok.lips.seal_k, None);
+        for bad in [
+            "seal_max_gap_m: -0.006",
+            "seal_k: Some(-0.4)",
+            "seal_k: Some(NaN)",
+        ] {
+            let e = FaceParams::from_ron(&with_lips(bad))
+                .unwrap_err()
+                .to_string();
+            let field = bad.split(':').next().unwrap();
+            assert!(e.contains(field), "{bad}: {e}");
+        }
     }
 }
