@@ -61,10 +61,15 @@ const SEGMENTS: u32 = 32;
 /// Surface of revolution about +Y from a profile of (radius, y, normal)
 /// points ordered from the top pole to the bottom pole.
 fn lathe(profile: &[(f32, f32, Vec3)]) -> MeshData {
+    lathe_with(profile, SEGMENTS)
+}
+
+/// [`lathe`] with `segments` steps of longitude.
+fn lathe_with(profile: &[(f32, f32, Vec3)], segments: u32) -> MeshData {
     let mut m = MeshData::default();
     for &(r, y, n) in profile {
-        for s in 0..=SEGMENTS {
-            let phi = TAU * s as f32 / SEGMENTS as f32;
+        for s in 0..=segments {
+            let phi = TAU * s as f32 / segments as f32;
             let (sin, cos) = phi.sin_cos();
             let radial = Vec3::new(sin, 0.0, cos);
             let normal = (radial * n.x + Vec3::Y * n.y).normalize_or(Vec3::Y);
@@ -72,9 +77,9 @@ fn lathe(profile: &[(f32, f32, Vec3)]) -> MeshData {
                 .push(Vertex::new(radial * r + Vec3::Y * y, normal));
         }
     }
-    let row = SEGMENTS + 1;
+    let row = segments + 1;
     for i in 0..profile.len() as u32 - 1 {
-        for s in 0..SEGMENTS {
+        for s in 0..segments {
             let a = i * row + s;
             let b = a + row;
             m.indices.extend_from_slice(&[a, b, a + 1, a + 1, b, b + 1]);
@@ -109,10 +114,19 @@ pub fn capsule(half_height: f32, radius: f32) -> MeshData {
 
 /// Rounded box of half extent 1: the superellipsoid
 /// `|x|^p + |y|^p + |z|^p = 1` (a sphere at `p = 2`, nearer a cube as `p`
-/// grows), the unit sphere's vertices carried onto it with its exact
+/// grows), a coarse sphere's vertices carried onto it with its exact
 /// normals.
 pub fn rounded_box(p: f32) -> MeshData {
-    let mut m = sphere();
+    // A coarse sphere: a crown covers a few pixels, and a mouth shows up
+    // to twenty of them.
+    let profile: Vec<(f32, f32, Vec3)> = (0..=8)
+        .map(|i| {
+            let theta = PI / 2.0 - PI * i as f32 / 8.0; // pi/2 .. -pi/2
+            let n = Vec3::new(theta.cos(), theta.sin(), 0.0);
+            (n.x, n.y, n)
+        })
+        .collect();
+    let mut m = lathe_with(&profile, 12);
     let carry = |v: f32, e: f32| v.signum() * v.abs().powf(e);
     for v in &mut m.vertices {
         let s = Vec3::from_array(v.pos);
