@@ -77,6 +77,16 @@ const HAIRLINE: [(f32, f32); 9] = [
 /// over more.
 const SOFT: [f32; 3] = [0.0012, 0.0018, 0.0015];
 
+/// A back face of the skin (the head's inside) within this far of the lips
+/// is seen through the parted lips and drawn as the mouth's inside, m (our
+/// choice: past the mouth's corners, short of the eyes).
+const MOUTH_INSIDE_REACH: f32 = 0.024;
+
+/// [`MOUTH_INSIDE_REACH`] as the lips' painted signed distance (the first
+/// of [`Regions`], in their soft border's units): the renderer draws a
+/// back face whose value exceeds it in the mouth's inside colour.
+pub const MOUTH_INSIDE_LIMIT: f32 = -MOUTH_INSIDE_REACH / SOFT[0];
+
 /// The lips' colour reaches at least this far from the mouth's opening, m:
 /// the opening's edge is lip all round, even at the corners, where the
 /// vermilion's band narrows to nothing but a wide-open mouth stretches
@@ -163,11 +173,13 @@ fn brow(p: Vec3, l: &Landmarks, min_half: f32) -> (f32, f32) {
     // A smooth arch through the points: a brow has no corner at its peak.
     let height = p.y - smooth_curve(&line.map(|q| (q.x, q.y)), x, None);
     let t = ((x - x0) / (x1 - x0)).clamp(0.0, 1.0);
+    // Half-width at the head, tapering toward the tail.
+    let widest = 0.0058;
     // The head ends bluntly, an elliptic cap over its last 3 mm (a brow's
     // head is its broadest, squarest part); the tail tapers to a point.
     let d = ((x - x0 + 0.002) / 0.003).clamp(0.0, 1.0);
-    let head = 0.0058 * (d * (2.0 - d)).sqrt() - (x0 - 0.002 - x).max(0.0);
-    let half = (0.0058 - 0.0032 * t)
+    let head = widest * (d * (2.0 - d)).sqrt() - (x0 - 0.002 - x).max(0.0);
+    let half = (widest - 0.0032 * t)
         .max(min_half)
         .min(head)
         .min(x1 - x + 0.0015)

@@ -193,8 +193,8 @@ impl LipSeal {
             seal.weight
                 .push((1.0 - smoothstep(0.0, SEAL_REACH, below)) * across);
         }
-        // The lower rim's vertices last (see `apply`).
-        let on_rim = |i: u32| seal.columns.iter().any(|&(_, l)| l == i);
+        // The rims' vertices last (see `apply`).
+        let on_rim = |i: u32| seal.columns.iter().any(|&(u, l)| u == i || l == i);
         let mut order: Vec<usize> = (0..seal.index.len()).collect();
         order.sort_by_key(|&n| on_rim(seal.index[n]));
         seal.index = order.iter().map(|&n| seal.index[n]).collect();
@@ -214,8 +214,8 @@ impl LipSeal {
         if s == 0.0 {
             return;
         }
-        // The lower rim's own vertices come last in the region, so every
-        // column's opening is read before its margin moves.
+        // The rims' own vertices come last in the region, so every
+        // column's opening is read before its margins move.
         for ((&i, &c), &w) in self.index.iter().zip(&self.column).zip(&self.weight) {
             let (u, l) = self.columns[c as usize];
             let moved = |v: u32| out[v as usize] - mesh.positions[v as usize];
@@ -722,7 +722,6 @@ mod tests {
             let rest = mid_gap(&mesh, &rig_with(&mesh, None), &Activation::default());
             let open = mid_gap(&mesh, &rig_with(&mesh, None), &a);
             let sealed = mid_gap(&mesh, &rig_with(&mesh, Some(0.4)), &a);
-            println!("{rows}: rest {rest}, open {open}, sealed {sealed}");
             assert!(open > rest + 0.001, "{rows}: {open} vs rest {rest}");
             assert!(sealed < rest + 0.0005, "{rows}: {sealed} vs rest {rest}");
         }

@@ -816,10 +816,12 @@ fn shader_source() -> String {
     use crate::anatomy::eye;
     let cos = |deg: f64| deg.to_radians().cos();
     format!(
-        "const PUPIL_COS: f32 = {:.6};\nconst LIMBUS_COS: f32 = {:.6};\nconst IRIS_COS: f32 = {:.6};\n{}",
+        "const PUPIL_COS: f32 = {:.6};\nconst LIMBUS_COS: f32 = {:.6};\nconst IRIS_COS: f32 = {:.6};\n\
+         const MOUTH_INSIDE_LIMIT: f32 = {:.6};\n{}",
         cos(eye::PUPIL_DEG),
         cos(eye::LIMBUS_DEG),
         cos(eye::IRIS_DEG),
+        crate::face::appearance::MOUTH_INSIDE_LIMIT,
         include_str!("shader.wgsl")
     )
 }

@@ -149,12 +149,12 @@ fn fs_body(v: PaintedOut) -> @location(0) vec4<f32> {
 @fragment
 fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
     // The face is wound counter-clockwise seen from outside: a back face
-    // within about 2.4 cm of the lips (`paint.x` is in units of their
-    // 1.2 mm soft border) is the head's inside seen through the parted
-    // lips, the mouth's dark inside (the cavity behind the teeth stands
-    // for the rest). Elsewhere (a lid's inside at an eye's corner) it is
-    // lit as skin.
-    if (!front && v.paint.x > -20.0) {
+    // near the lips (`paint.x`, their signed distance, above
+    // MOUTH_INSIDE_LIMIT, prepended from face/appearance.rs) is the head's
+    // inside seen through the parted lips, the mouth's dark inside (the
+    // cavity behind the teeth stands for the rest). Elsewhere (a lid's
+    // inside at an eye's corner) it is lit as skin.
+    if (!front && v.paint.x > MOUTH_INSIDE_LIMIT) {
         return vec4<f32>(g.face_regions[3].rgb, 1.0);
     }
     let view_dir = normalize(g.camera.xyz - v.world);

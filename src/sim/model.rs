@@ -121,7 +121,7 @@ impl Model {
             // fields and the wrinkles' rest frames depend on the skin and
             // lip parameters, so the whole face is rebuilt on its mesh.
             let mesh = self.face.mesh.clone();
-            self.face = Arc::new(crate::face::Face::from_mesh(mesh, seed));
+            self.face = Arc::new(Face::from_mesh(mesh, seed));
         }
     }
 
