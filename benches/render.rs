@@ -6,8 +6,8 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use shisen::render::{Frame, Headless, Overlays, View};
 use shisen::scene::LoadedScene;
+use shisen_app::render::{Frame, Headless, Overlays, View};
 
 const SIZE: (u32, u32) = (1280, 720);
 

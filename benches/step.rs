@@ -6,10 +6,10 @@ use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::DVec3;
-use shisen::agent::attention::{Attention, AttentionParams};
-use shisen::agent::behaviour::TopDown;
-use shisen::agent::vision::{VisionParams, see};
-use shisen::physics::body::{BodyPlan, Shape};
+use shisen::gaze::attention::{Attention, AttentionParams, Spot};
+use shisen::gaze::behaviour::TopDown;
+use shisen::gaze::vision::{VisionParams, see};
+use shisen::physics::body::{BodyPlan, OpponentPart, Shape};
 use shisen::physics::world::{PropSpec, World};
 use shisen::scene::LoadedScene;
 use shisen::sim::DT;
@@ -59,7 +59,8 @@ fn vision_attention(c: &mut Criterion) {
         let ap = AttentionParams::default();
         let top = TopDown {
             name: "head".into(),
-            body: Some(world.opponent[0]),
+            body: Some(world.part(OpponentPart::Head)),
+            spot: Spot::Centre,
             offset: DVec3::ZERO,
             amount: 1.5,
         };

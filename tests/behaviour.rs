@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use glam::Vec3;
-use shisen::agent::vision::{VisionParams, see};
+use shisen::gaze::vision::{VisionParams, see};
 use shisen::physics::body::{BodyPlan, Shape};
 use shisen::physics::world::{PropSpec, World};
 use shisen::scene::LoadedScene;
@@ -52,7 +52,7 @@ fn strong_boxer_watches_the_face_more_than_a_weak_one() {
 #[test]
 fn a_hand_entering_the_field_is_noticed_quickly() {
     let loaded = scene("fov_entry.ron");
-    let hand = |sim: &Sim| sim.world.body_index("hand").unwrap();
+    let hand = |sim: &Sim| sim.world.body_named("hand").unwrap();
     let mut sim = loaded.sim();
     let mut entered = None;
     let mut looked = None;

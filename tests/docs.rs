@@ -1,12 +1,14 @@
-//! Every equation the code cites has its explanation in `docs/model/`:
-//! a comment naming `(M7)`, `(H2)` or `(F6)` resolves to an anchor `m7` /
-//! `h2` / `f6` there (gaze equations, T1 and the human-timing laws H1-H5
-//! in gaze.md, face equations in face.md).
+//! Every equation the code cites has its explanation in `docs/model/`: a
+//! comment naming `(M7)`, `(H2)`, `(F6)` or a range `(W1-W3)` resolves to
+//! an anchor `m7` / `h2` / `f6` / `w1`..`w3` there. The families checked are
+//! every letter that labels an equation anchor in the docs (M, T, H in
+//! gaze.md; F, S, O, L, W in face.md), so a new family is checked as soon
+//! as it is documented. No anchor appears twice in one file.
 
-use std::collections::BTreeSet;
-use std::path::Path;
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
 
-fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     for e in std::fs::read_dir(dir).unwrap() {
         let p = e.unwrap().path();
         if p.is_dir() {
@@ -17,51 +19,143 @@ fn rust_files(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
     }
 }
 
-/// Equation labels written as `(M7)`, `(F6)`, `(T1)`, or `M2-M6` ranges'
-/// ends, in the source.
-fn cited(text: &str) -> BTreeSet<String> {
+/// Every Rust file of the workspace's crates (their `src`, `examples`).
+fn workspace_sources() -> Vec<PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut dirs = vec![root.join("src")];
+    for c in std::fs::read_dir(root.join("crates")).unwrap() {
+        let c = c.unwrap().path();
+        dirs.extend(
+            ["src", "examples"]
+                .map(|d| c.join(d))
+                .into_iter()
+                .filter(|d| d.is_dir()),
+        );
+    }
+    let mut files = Vec::new();
+    for d in &dirs {
+        rust_files(d, &mut files);
+    }
+    assert!(files.len() > 50, "found only {} sources", files.len());
+    files
+}
+
+/// A label `X12` at `i` (a capital letter of `families`, digits, then a
+/// non-word character): its lowercase form and its end.
+fn label_at(text: &str, i: usize, families: &BTreeSet<char>) -> Option<(String, usize)> {
+    let b = text.as_bytes();
+    let c = *b.get(i)? as char;
+    if !families.contains(&c.to_ascii_lowercase()) || !c.is_ascii_uppercase() {
+        return None;
+    }
+    let mut j = i + 1;
+    while j < b.len() && b[j].is_ascii_digit() {
+        j += 1;
+    }
+    let next_ok = j == b.len() || !(b[j].is_ascii_alphanumeric() || b[j] == b'_');
+    (j > i + 1 && next_ok).then(|| (text[i..j].to_lowercase(), j))
+}
+
+/// Equation labels cited in parentheses: `(M7)`, `(M8 with ...`, `(F7),`,
+/// and both ends of a range `(W1-W3)` with every label between.
+fn cited(text: &str, families: &BTreeSet<char>) -> BTreeSet<String> {
     let b = text.as_bytes();
     let mut out = BTreeSet::new();
-    for i in 0..b.len().saturating_sub(2) {
-        let prev_ok = i == 0 || !(b[i - 1].is_ascii_alphanumeric() || b[i - 1] == b'_');
-        if prev_ok && matches!(b[i], b'M' | b'F' | b'T' | b'H') && b[i + 1].is_ascii_digit() {
-            let mut j = i + 1;
-            while j < b.len() && b[j].is_ascii_digit() {
-                j += 1;
-            }
-            let next_ok = j == b.len() || !(b[j].is_ascii_alphanumeric() || b[j] == b'_');
-            // Only in parentheses: `(M7)`, `(M8 with ...`, `(F7),`.
-            if next_ok && i > 0 && b[i - 1] == b'(' {
-                out.insert(text[i..j].to_lowercase());
-            }
+    for i in 1..b.len() {
+        if b[i - 1] != b'(' {
+            continue;
+        }
+        let Some((first, end)) = label_at(text, i, families) else {
+            continue;
+        };
+        out.insert(first.clone());
+        if b.get(end) == Some(&b'-')
+            && let Some((last, _)) = label_at(text, end + 1, families)
+            && last[..1] == first[..1]
+        {
+            let (a, z): (u32, u32) = (first[1..].parse().unwrap(), last[1..].parse().unwrap());
+            out.extend((a..=z).map(|n| format!("{}{n}", &first[..1])));
         }
     }
     out
 }
 
+/// Anchors `<a id="...">` of each docs/model file, with how often each appears.
+fn anchors() -> BTreeMap<String, BTreeMap<String, usize>> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/model");
+    let mut out = BTreeMap::new();
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.extension().is_none_or(|x| x != "md") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&p).unwrap();
+        let mut ids = BTreeMap::new();
+        for part in text.split("<a id=\"").skip(1) {
+            let id = part.split('"').next().unwrap().to_string();
+            *ids.entry(id).or_insert(0) += 1;
+        }
+        out.insert(p.file_name().unwrap().to_string_lossy().into_owned(), ids);
+    }
+    out
+}
+
+/// Equation anchors: a letter and digits (`m7`, `w2`).
+fn is_equation(id: &str) -> bool {
+    let mut c = id.chars();
+    c.next().is_some_and(|l| l.is_ascii_lowercase())
+        && id.len() > 1
+        && c.all(|d| d.is_ascii_digit())
+}
+
 #[test]
 fn every_cited_equation_is_documented() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut files = Vec::new();
-    rust_files(&root.join("src"), &mut files);
-    let mut labels = BTreeSet::new();
-    for f in &files {
-        labels.extend(cited(&std::fs::read_to_string(f).unwrap()));
+    let docs = anchors();
+    let documented: BTreeSet<String> = docs
+        .values()
+        .flat_map(|ids| ids.keys())
+        .filter(|id| is_equation(id))
+        .cloned()
+        .collect();
+    let families: BTreeSet<char> = documented
+        .iter()
+        .map(|l| l.chars().next().unwrap())
+        .collect();
+    for f in ['m', 'f', 't', 'h', 's', 'o', 'l', 'w'] {
+        assert!(
+            families.contains(&f),
+            "no equation family {f} in docs/model: {families:?}"
+        );
     }
-    let docs: String = ["gaze.md", "face.md"]
-        .iter()
-        .map(|d| std::fs::read_to_string(root.join("docs/model").join(d)).unwrap())
-        .collect();
-    assert!(
-        labels.contains("m1") && labels.contains("f7") && labels.contains("h1"),
-        "{labels:?}"
-    );
-    let missing: Vec<_> = labels
-        .iter()
-        .filter(|l| !docs.contains(&format!("<a id=\"{l}\">")))
-        .collect();
+    let mut labels = BTreeSet::new();
+    for f in workspace_sources() {
+        labels.extend(cited(&std::fs::read_to_string(f).unwrap(), &families));
+    }
+    for l in ["m1", "f7", "h1", "s1", "o1", "l1", "w1", "w3", "t1"] {
+        assert!(labels.contains(l), "{l} not cited: {labels:?}");
+    }
+    let missing: Vec<_> = labels.difference(&documented).collect();
     assert!(
         missing.is_empty(),
         "cited but not in docs/model: {missing:?}"
     );
+}
+
+#[test]
+fn anchors_are_unique_in_each_file() {
+    for (file, ids) in anchors() {
+        let twice: Vec<_> = ids.iter().filter(|(_, n)| **n > 1).collect();
+        assert!(
+            twice.is_empty(),
+            "docs/model/{file}: anchors repeated: {twice:?}"
+        );
+    }
+}
+
+#[test]
+fn ranges_and_families_are_read() {
+    let fam: BTreeSet<char> = ['m', 'w', 'l'].into();
+    let c = cited("x (W1-W3) y (M7) z (L2 (AU6) MM1 (M12a)", &fam);
+    let want: BTreeSet<String> = ["w1", "w2", "w3", "m7", "l2"].map(String::from).into();
+    assert_eq!(c, want);
 }

@@ -6,8 +6,21 @@
 use std::path::Path;
 
 use glam::DVec3;
+use shisen::physics::body::{BodyPlan, eye};
 use shisen::scene::LoadedScene;
 use shisen::sim::Sample;
+
+/// A point `dist` m from the VH's eyes (their midpoint at rest), `deg`
+/// to its left, at eye height.
+fn ahead(deg: f64, dist: f64) -> DVec3 {
+    let a = deg.to_radians();
+    BodyPlan::eyes_midpoint() + dist * DVec3::new(a.sin(), 0.0, a.cos())
+}
+
+/// A point as a RON tuple.
+fn ron(p: DVec3) -> String {
+    format!("({}, {}, {})", p.x, p.y, p.z)
+}
 
 fn run(text: &str) -> Vec<Sample> {
     let loaded = LoadedScene::from_str(text, Path::new("inline.ron"), None)
@@ -36,12 +49,11 @@ const QUIET: &str =
 fn physical_eye_tracks_the_planned_saccade() {
     for amp in [10.0f64, 20.0, 30.0] {
         let a = amp.to_radians();
-        let p = DVec3::new(a.sin(), 1.6745, 0.072 + a.cos());
+        let p = ron(ahead(amp, 1.0));
         let s = run(&format!(
-            "Scene(duration: 1.0, vh: ({QUIET}), timeline: [(at: 0.2, do: LookAt(point: ({}, {}, {}), until: 1.0))])",
-            p.x, p.y, p.z
+            "Scene(duration: 1.0, vh: ({QUIET}), timeline: [(at: 0.2, do: LookAt(point: {p}, until: 1.0))])"
         ));
-        let plan = shisen::agent::oculomotor::saccade::SaccadeProfile::plan(&Default::default(), a)
+        let plan = shisen::gaze::oculomotor::saccade::SaccadeProfile::plan(&Default::default(), a)
             .duration();
         let during: Vec<f64> = window(&s, 0.2, 0.2 + plan)
             .map(|x| (x.eye_target[0] - x.eye_actual[0]).length())
@@ -66,9 +78,10 @@ fn physical_eye_tracks_the_planned_saccade() {
 /// 0.95-1.05 and the line of sight stays within 1 deg.
 #[test]
 fn vor_gain_is_one_while_the_head_is_shaken() {
+    let far = ron(ahead(0.0, 10.0));
     let s = run(&format!(
         "Scene(duration: 3.0, vh: ({QUIET}), timeline: [
-            (at: 0.0, do: LookAt(point: (0.0, 1.6745, 10.0), until: 3.0)),
+            (at: 0.0, do: LookAt(point: {far}, until: 3.0)),
             (at: 0.5, do: ShakeHead(yaw_deg: 15.0, frequency: 1.5, duration: 2.5)),
         ])"
     ));
@@ -100,15 +113,13 @@ fn vor_gain_is_one_while_the_head_is_shaken() {
 fn pursuit_gain_at_10_20_30_deg_per_s() {
     for rate in [10.0f64, 20.0, 30.0] {
         // start 20 deg to the right, 2 m from the eyes, sweep left for 1.4 s
-        let a = (-20.0f64).to_radians();
+        let (start, centre) = (ron(ahead(-20.0, 2.0)), ron(ahead(0.0, 0.0)));
         let s = run(&format!(
-            "Scene(duration: 2.2, vh: ({QUIET}), bodies: [(name: \"dot\", shape: Ball(0.02), position: ({}, 1.6745, {}), kinematic: true)],
+            "Scene(duration: 2.2, vh: ({QUIET}), bodies: [(name: \"dot\", shape: Ball(0.02), position: {start}, kinematic: true)],
              timeline: [
                 (at: 0.0, do: Track(body: \"dot\", until: 2.2)),
-                (at: 0.6, do: Orbit(part: Body(\"dot\"), centre: (0.0, 1.6745, 0.072), rate_deg: {rate}, duration: 1.4)),
-             ])",
-            2.0 * a.sin(),
-            0.072 + 2.0 * a.cos()
+                (at: 0.6, do: Orbit(part: Body(\"dot\"), centre: {centre}, rate_deg: {rate}, duration: 1.4)),
+             ])"
         ));
         let w: Vec<&Sample> = window(&s, 0.9, 1.95).collect();
         let dt = w[w.len() - 1].t - w[0].t;
@@ -121,12 +132,13 @@ fn pursuit_gain_at_10_20_30_deg_per_s() {
 }
 
 fn vergence_run(occlude: &str) -> Vec<Sample> {
+    let (from, to) = (ron(ahead(0.0, 1.0)), ron(ahead(0.0, 0.25)));
     run(&format!(
-        "Scene(duration: 3.0, vh: ({QUIET}), bodies: [(name: \"dot\", shape: Ball(0.01), position: (0.0, 1.6745, 1.072), kinematic: true)],
+        "Scene(duration: 3.0, vh: ({QUIET}), bodies: [(name: \"dot\", shape: Ball(0.01), position: {from}, kinematic: true)],
          timeline: [
             (at: 0.0, do: Occlude(eye: {occlude})),
             (at: 0.0, do: Track(body: \"dot\", until: 3.0)),
-            (at: 0.5, do: Move(part: Body(\"dot\"), to: (0.0, 1.6745, 0.322), duration: 2.0)),
+            (at: 0.5, do: Move(part: Body(\"dot\"), to: {to}, duration: 2.0)),
          ])"
     ))
 }
@@ -136,7 +148,7 @@ fn vergence_run(occlude: &str) -> Vec<Sample> {
 /// covered, that eye still lands within 2 deg of the target.
 #[test]
 fn vergence_with_and_without_an_occluded_eye() {
-    let geometric = (0.0619f64 / 2.0).atan2(0.25).to_degrees();
+    let geometric = (f64::from(eye::IPD) / 2.0).atan2(0.25).to_degrees();
     let s = vergence_run("None");
     let end = s.last().unwrap();
     let (l, r) = (
@@ -157,11 +169,9 @@ fn vergence_with_and_without_an_occluded_eye() {
 }
 
 fn look(deg: f64, amount: f64) -> Vec<Sample> {
-    let a = deg.to_radians();
+    let p = ron(ahead(deg, 1.0));
     run(&format!(
-        "Scene(duration: 2.0, vh: ({QUIET}), timeline: [(at: 0.2, do: LookAt(point: ({}, 1.6745, {}), until: 2.0, amount: {amount}))])",
-        a.sin(),
-        0.072 + a.cos()
+        "Scene(duration: 2.0, vh: ({QUIET}), timeline: [(at: 0.2, do: LookAt(point: {p}, until: 2.0, amount: {amount}))])"
     ))
 }
 
@@ -213,11 +223,9 @@ fn head_onset_follows_the_eyes_for_bottom_up_targets() {
         }
         panic!("no head movement");
     };
-    let a = 50.0f64.to_radians();
+    let p = ron(ahead(50.0, 1.0));
     let text = format!(
-        "Scene(duration: 2.0, vh: ({QUIET}), timeline: [(at: 0.2, do: LookAt(point: ({}, 1.6745, {}), until: 2.0))])",
-        a.sin(),
-        0.072 + a.cos()
+        "Scene(duration: 2.0, vh: ({QUIET}), timeline: [(at: 0.2, do: LookAt(point: {p}, until: 2.0))])"
     );
     let td = LoadedScene::from_str(&text, Path::new("inline.ron"), None).unwrap();
     let (e, h) = onsets(&td, 0.1);
@@ -239,12 +247,10 @@ fn head_onset_follows_the_eyes_for_bottom_up_targets() {
 #[test]
 fn takagi_shift_keeps_eye_equal_gaze_minus_head() {
     use glam::DVec2;
-    use shisen::agent::oculomotor::takagi::Preset;
-    let a = 40.0f64.to_radians();
+    use shisen::gaze::oculomotor::takagi::Preset;
+    let p = ron(ahead(40.0, 1.0));
     let s = run(&format!(
-        "Scene(duration: 3.0, vh: ({QUIET}), timeline: [(at: 0.2, do: LookAt(point: ({}, 1.6745, {}), until: 3.0, style: Takagi(Dialogue)))])",
-        a.sin(),
-        0.072 + a.cos()
+        "Scene(duration: 3.0, vh: ({QUIET}), timeline: [(at: 0.2, do: LookAt(point: {p}, until: 3.0, style: Takagi(Dialogue)))])"
     ));
     let t0 = 0.2;
     let before = s.iter().rev().find(|x| x.t <= t0 + 1e-9).unwrap();

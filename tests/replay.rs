@@ -6,13 +6,13 @@
 use std::path::Path;
 
 use glam::Vec3;
-use shisen::app::session::{SceneSource, Session};
 use shisen::face::tables::Emotion;
 use shisen::face::timing::{Pattern, Speed};
-use shisen::input::Intent;
 use shisen::scene::LoadedScene;
 use shisen::sim::timeline::{Action, Event};
 use shisen::tools::trace::TraceWriter;
+use shisen_app::app::session::{SceneSource, Session};
+use shisen_app::input::Intent;
 
 /// A deterministic input for frame `f`.
 fn synthetic(f: u32) -> Intent {

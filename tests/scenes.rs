@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use shisen::agent::oculomotor::saccade::{SaccadeParams, SaccadeProfile};
+use shisen::gaze::oculomotor::saccade::{SaccadeParams, SaccadeProfile};
 use shisen::scene::LoadedScene;
 use shisen::sim::{Profile, Sim};
 use shisen::tools::headless;

@@ -24,7 +24,7 @@ use eframe::egui;
 use crate::input::pad::Pads;
 use crate::input::{Bindings, Collector, Command};
 use crate::render::View;
-use crate::scene::LoadedScene;
+use shisen::scene::LoadedScene;
 
 use panels::PanelState;
 use session::{SceneSource, Session};

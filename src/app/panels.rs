@@ -5,11 +5,11 @@
 use eframe::egui::{self, RichText};
 use egui_plot::{Legend, Line, Plot, PlotPoints};
 
-use crate::face::tables::{ActionUnit, Emotion};
-use crate::face::timing::{Pattern, Speed};
-use crate::physics::body::Group;
-use crate::sim::blows::{BlowKind, Fighter};
-use crate::sim::timeline::{Action, Event};
+use shisen::physics::body::Group;
+use shisen::sim::blows::{BlowKind, Fighter};
+use shisen::sim::timeline::{Action, Event};
+use shisen_face::tables::{ActionUnit, Emotion};
+use shisen_face::timing::{Pattern, Speed};
 
 use super::session::Session;
 use super::tuning::{StepResponse, step_response};
@@ -53,7 +53,7 @@ impl Default for PanelState {
 
 impl PanelState {
     /// Open these sections at start (`gains` also shows a neck step response).
-    pub fn open_sections(&mut self, sections: &[String], gains: &crate::physics::control::Gains) {
+    pub fn open_sections(&mut self, sections: &[String], gains: &shisen::physics::control::Gains) {
         self.open = sections.to_vec();
         if self.open.iter().any(|s| s == "gains") {
             self.step = Some(step_response(gains, Group::Neck));
@@ -289,8 +289,8 @@ fn attention(ui: &mut egui::Ui, s: &Session) {
         .iter()
         .map(|v| {
             (
-                s.sim.world.bodies[v.body].name.clone(),
-                s.sim.attention.scores[v.body],
+                s.sim.world.info(v.body).name.clone(),
+                s.sim.attention.scores[v.body.index()],
             )
         })
         .collect();
@@ -317,9 +317,9 @@ fn attention(ui: &mut egui::Ui, s: &Session) {
     // The action's request carries the personality's amount for it (gaze.md 5).
     let pers = &s.sim.params().personality;
     let top_down = match last.action {
-        crate::agent::behaviour::ActionKind::Idle => pers.a_face,
-        crate::agent::behaviour::ActionKind::Guard => pers.a_guard,
-        crate::agent::behaviour::ActionKind::Attack => pers.a_attack,
+        shisen_gaze::behaviour::ActionKind::Idle => pers.a_face,
+        shisen_gaze::behaviour::ActionKind::Guard => pers.a_guard,
+        shisen_gaze::behaviour::ActionKind::Attack => pers.a_attack,
     };
     ui.horizontal(|ui| {
         ui.add_sized([90.0, 16.0], egui::Label::new("top-down"));
@@ -365,10 +365,10 @@ fn gains(ui: &mut egui::Ui, s: &mut Session, st: &mut PanelState) {
         ui.text_edit_singleline(&mut st.gains_path);
         if ui.button("Load gains").clicked() {
             let p = std::path::PathBuf::from(&st.gains_path);
-            let loaded = crate::physics::control::Gains::load(&p)
+            let loaded = shisen::physics::control::Gains::load(&p)
                 .map_err(|e| e.to_string())
                 .and_then(|g| {
-                    crate::physics::world::check_gains(&g)
+                    shisen::physics::plausible::check_gains(&g)
                         .map(|()| g)
                         .map_err(|m| m.to_string())
                 });
@@ -413,7 +413,7 @@ fn gains(ui: &mut egui::Ui, s: &mut Session, st: &mut PanelState) {
         s.sim.edit_params(|m| m.gains = g);
     }
     ui.label("live target (dashed) vs actual, degrees:");
-    let series = |f: &dyn Fn(&crate::sim::Sample) -> f64| -> PlotPoints<'static> {
+    let series = |f: &dyn Fn(&shisen::sim::Sample) -> f64| -> PlotPoints<'static> {
         s.history.iter().map(|x| [x.t, f(x).to_degrees()]).collect()
     };
     Plot::new("joint plot")

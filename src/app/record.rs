@@ -7,10 +7,10 @@
 //! The file is written through serde ([`Scene::to_ron`]); floats are
 //! written in shortest round-trip form, so they read back bit for bit.
 
-use crate::physics::control::Gains;
-use crate::scene::Scene;
-use crate::sim::expect::Expect;
-use crate::sim::timeline::Event;
+use shisen::physics::control::Gains;
+use shisen::scene::Scene;
+use shisen::sim::expect::Expect;
+use shisen::sim::timeline::Event;
 
 /// A session being recorded (from the scene's start).
 #[derive(Clone, Debug)]
@@ -76,9 +76,9 @@ impl Recorder {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::LoadedScene;
-    use crate::sim::timeline::{Action, Hand, Part, PunchTarget};
     use glam::DVec3;
+    use shisen::scene::LoadedScene;
+    use shisen::sim::timeline::{Action, Hand, Part, PunchTarget};
     use std::path::Path;
 
     #[test]

@@ -9,11 +9,11 @@ use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
 use crate::input::{Intent, OpponentControl};
-use crate::scene::LoadedScene;
-use crate::sim::blows::Blow;
-use crate::sim::timeline::Event;
-use crate::sim::{DT, Sample, Sim};
-use crate::tools::trace::TraceWriter;
+use shisen::scene::LoadedScene;
+use shisen::sim::blows::Blow;
+use shisen::sim::timeline::Event;
+use shisen::sim::{DT, Sample, Sim};
+use shisen::tools::trace::TraceWriter;
 
 use super::record::Recorder;
 
@@ -40,7 +40,7 @@ impl SceneSource {
     /// The embedded default scene.
     pub fn default_scene() -> Self {
         SceneSource {
-            text: crate::scene::DEFAULT_SCENE_RON.to_string(),
+            text: shisen::scene::DEFAULT_SCENE_RON.to_string(),
             path: None,
         }
     }

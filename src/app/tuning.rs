@@ -3,10 +3,10 @@
 //! [`tune::run`] and judged by [`tune::evaluate`], the same code path as
 //! `shisen tune` and the tuning tests.
 
-use crate::physics::body::Group;
-use crate::physics::control::Gains;
-use crate::sim::DT;
-use crate::tools::tune::{self, Objective, Report, Response};
+use shisen::physics::body::Group;
+use shisen::physics::control::Gains;
+use shisen::sim::DT;
+use shisen::tools::tune::{self, Objective, Report, Response};
 
 /// A measured step response.
 #[derive(Clone, Debug)]

@@ -9,7 +9,7 @@ use eframe::egui;
 use serde::{Deserialize, Serialize};
 
 use super::command::{Command, PadButton, Stick, Trigger};
-use crate::util::ron::LoadError;
+use shisen_gaze::util::ron::LoadError;
 
 /// The embedded default bindings.
 pub const DEFAULT_BINDINGS_RON: &str = include_str!("bindings.ron");
@@ -45,7 +45,7 @@ pub struct PadAxes {
 }
 
 fn dead_zone<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
-    crate::util::check::in_range(d, 0.0, 0.9).map(|v| v as f32)
+    shisen_gaze::util::check::in_range(d, 0.0, 0.9).map(|v| v as f32)
 }
 
 /// All bindings.
@@ -54,12 +54,12 @@ fn dead_zone<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
 pub struct Bindings {
     /// Key name (egui's: `A`, `ArrowLeft`, `Space`, `F1`, ...) to command;
     /// each key once.
-    #[serde(deserialize_with = "crate::util::check::unique_keys")]
+    #[serde(deserialize_with = "shisen_gaze::util::check::unique_keys")]
     pub keys: BTreeMap<String, Command>,
     /// Mouse buttons.
     pub mouse: MouseBindings,
     /// Gamepad buttons, each once.
-    #[serde(deserialize_with = "crate::util::check::unique_keys")]
+    #[serde(deserialize_with = "shisen_gaze::util::check::unique_keys")]
     pub pad_buttons: BTreeMap<PadButton, Command>,
     /// Gamepad sticks and triggers.
     pub pad_axes: PadAxes,
@@ -91,7 +91,7 @@ impl Default for Bindings {
 impl Bindings {
     /// Parse and check bindings text.
     pub fn parse(text: &str, file: &Path) -> Result<Bindings, BindingsError> {
-        let b: Bindings = crate::util::ron::parse_ron(text, file)?;
+        let b: Bindings = shisen_gaze::util::ron::parse_ron(text, file)?;
         if let Some(name) = b.keys.keys().find(|k| egui::Key::from_name(k).is_none()) {
             return Err(BindingsError::UnknownKey {
                 file: file.display().to_string(),
@@ -103,7 +103,7 @@ impl Bindings {
 
     /// Read a bindings file.
     pub fn load(path: &Path) -> Result<Bindings, BindingsError> {
-        let text = crate::util::ron::read_text(path)?;
+        let text = shisen_gaze::util::ron::read_text(path)?;
         Self::parse(&text, path)
     }
 

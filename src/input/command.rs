@@ -79,9 +79,9 @@ pub enum Stick {
 /// A gamepad trigger.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum Trigger {
-    /// Left trigger (L2).
+    /// Left trigger, L2.
     LeftTrigger,
-    /// Right trigger (R2).
+    /// Right trigger, R2.
     RightTrigger,
 }
 

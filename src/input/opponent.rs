@@ -5,9 +5,9 @@
 
 use glam::{DVec3, Vec3};
 
-use crate::physics::body::BodyPlan;
-use crate::sim::timeline::{Action, Event, Hand, Part, PunchTarget};
-use crate::sim::track::Track;
+use shisen::physics::body::BodyPlan;
+use shisen::sim::timeline::{Action, Event, Hand, Part, PunchTarget};
+use shisen::sim::track::Track;
 
 /// What you want your avatar to do this frame, in world metres.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -2,9 +2,8 @@
 
 use glam::{Mat4, Vec2, Vec3, Vec4Swizzles};
 
-use crate::physics::body::seg;
-use crate::physics::world::opp;
-use crate::sim::Sim;
+use shisen::physics::body::{OpponentPart, Seg};
+use shisen::sim::Sim;
 
 /// Which camera to render from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -96,12 +95,12 @@ impl Camera {
     /// The camera of `view` for the current state of `sim`.
     pub fn of(view: View, sim: &Sim, aspect: f32) -> Camera {
         let w = &sim.world;
-        let vh_head = w.pose(seg::HEAD).0;
+        let vh_head = w.pose(Seg::Head).0;
         match view {
             View::First => {
-                let eye = w.pose(w.opponent[opp::HEAD]).0;
+                let eye = w.pose(w.part(OpponentPart::Head)).0;
                 // Look at the VH's face (between its eyes), not the head centre.
-                let face = (w.pose(seg::EYE_L).0 + w.pose(seg::EYE_R).0) / 2.0;
+                let face = (w.pose(Seg::EyeL).0 + w.pose(Seg::EyeR).0) / 2.0;
                 Camera {
                     eye,
                     target: face - Vec3::Y * 0.04,

@@ -5,14 +5,15 @@
 use glam::{DVec3, Mat4, Quat, Vec3};
 use rapier3d::prelude::TypedShape;
 
-use crate::face::mesh::compute_normals;
-use crate::physics::body::{BodyPlan, seg};
-use crate::physics::world::{Owner, opp};
-use crate::sim::Sim;
-use crate::util::math::{dir_from_yaw_pitch, yaw_pitch_of};
+use shisen::physics::body::{BodyPlan, OpponentPart, Seg};
+use shisen::physics::world::Owner;
+use shisen::sim::Sim;
+use shisen_face::mesh::compute_normals;
+use shisen_gaze::util::math::{dir_from_yaw_pitch, yaw_pitch_of};
 
 use super::body::{BodyMesh, BodyStyle, Pose, SKIN, avatar_pose, vh_pose};
 use super::camera::{Camera, View};
+use super::face_parts::{lashes, mouth};
 use super::geometry::Vertex;
 
 /// Which mesh a draw uses.
@@ -215,19 +216,15 @@ fn posed(mesh: &BodyMesh, pose: &Pose) -> Vec<Vertex> {
     out
 }
 
-/// Inside of the mouth, and teeth.
-const MOUTH: [f32; 4] = {
-    let c = crate::face::appearance::FaceStyle::DEFAULT.inside;
-    [c[0], c[1], c[2], 1.0]
-};
-const TEETH: [f32; 4] = [0.80, 0.78, 0.70, 1.0];
 const HAIR: [f32; 4] = {
-    let h = crate::face::appearance::FaceStyle::DEFAULT.hair;
+    let h = shisen_face::appearance::FaceStyle::DEFAULT.hair;
     [h[0], h[1], h[2], 1.0]
 };
 const PROP: [f32; 4] = [0.85, 0.65, 0.12, 1.0];
 const STAND: [f32; 4] = [0.30, 0.30, 0.32, 1.0];
 const WHITE: [f32; 4] = [1.0, 1.0, 1.0, 1.0];
+/// Ears are a little redder than the face.
+const EAR: [f32; 4] = [SKIN[0] * 1.04, SKIN[1] * 0.95, SKIN[2] * 0.95, 1.0];
 /// Length of drawn field-of-view edges and joint axes, m.
 const FOV_LEN: f32 = 0.5;
 const AXIS_LEN: f32 = 0.06;
@@ -235,7 +232,8 @@ const AXIS_LEN: f32 = 0.06;
 /// Offset of the face frame's origin (midway between the eyes at rest) from
 /// the head body's centre, in the head body's frame.
 pub fn face_offset(plan: &BodyPlan) -> Vec3 {
-    (BodyPlan::eye_centre(0) + BodyPlan::eye_centre(1)) / 2.0 - plan.segments[seg::HEAD].centre
+    (BodyPlan::eye_centre(0) + BodyPlan::eye_centre(1)) / 2.0
+        - plan.segments[Seg::Head.index()].centre
 }
 
 impl Frame {
@@ -249,8 +247,8 @@ impl Frame {
         let looks = Looks::of(&w.plan);
         let body = posed(&looks.vh, &vh_pose(|s| w.pose(s), &w.plan));
         let (you_head, you_gloves) = (
-            w.position(w.opponent[opp::HEAD]),
-            [opp::LEFT_GLOVE, opp::RIGHT_GLOVE].map(|g| w.position(w.opponent[g])),
+            w.position(w.part(OpponentPart::Head)),
+            [OpponentPart::LeftGlove, OpponentPart::RightGlove].map(|g| w.position(w.part(g))),
         );
         let avatar = posed(&looks.you, &avatar_pose(&w.plan, you_head, you_gloves));
         for d in [MeshKey::Avatar, MeshKey::Body] {
@@ -280,11 +278,11 @@ impl Frame {
                 });
             }
         }
-        for (i, b) in w.bodies.iter().enumerate() {
+        for (i, b) in w.body_ids().zip(&w.bodies) {
             match b.owner {
-                Owner::Vh(s) if s == seg::EYE_L || s == seg::EYE_R => {
+                Owner::Vh(Seg::EyeL | Seg::EyeR) => {
                     let (p, q) = w.pose(i);
-                    let r = crate::physics::body::eye::RADIUS;
+                    let r = shisen::physics::body::eye::RADIUS;
                     draws.push(Draw {
                         mesh: MeshKey::Sphere,
                         model: Mat4::from_scale_rotation_translation(Vec3::splat(r), q, p),
@@ -295,7 +293,7 @@ impl Frame {
                 }
                 // The skinned bodies and the face stand for the VH's other
                 // segments and your head and gloves.
-                Owner::Vh(_) | Owner::Opponent => continue,
+                Owner::Vh(_) | Owner::Opponent(_) => continue,
                 Owner::Prop => {}
             }
             let c = &w.phys.colliders[b.collider];
@@ -321,7 +319,7 @@ impl Frame {
                 material: Material::Plain,
             });
         }
-        let (head_p, head_q) = w.pose(seg::HEAD);
+        let (head_p, head_q) = w.pose(Seg::Head);
         let face_frame = Mat4::from_rotation_translation(head_q, head_p)
             * Mat4::from_translation(face_offset(&w.plan));
         draws.push(Draw {
@@ -401,8 +399,8 @@ impl Frame {
 
     fn add_overlays(&mut self, sim: &Sim, o: Overlays) {
         let w = &sim.world;
-        let eyes = [seg::EYE_L, seg::EYE_R].map(|e| w.pose(e));
-        let head_q = w.pose(seg::HEAD).1;
+        let eyes = [Seg::EyeL, Seg::EyeR].map(|e| w.pose(e));
+        let head_q = w.pose(Seg::Head).1;
         if o.gaze_rays
             && let Some(s) = sim.last()
         {
@@ -450,7 +448,7 @@ impl Frame {
             }
         }
         if o.joint_frames {
-            for (i, b) in w.bodies.iter().enumerate() {
+            for (i, b) in w.body_ids().zip(&w.bodies) {
                 if let Owner::Vh(_) = b.owner {
                     let (p, q) = w.pose(i);
                     self.line(p, p + q * Vec3::X * AXIS_LEN, [1.0, 0.1, 0.1, 1.0]);
@@ -467,7 +465,8 @@ impl Frame {
                     at: (s.position + DVec3::Y * 0.08).as_vec3(),
                     text: format!(
                         "{} {:.2}{mark}",
-                        w.bodies[s.body].name, sim.attention.scores[s.body]
+                        w.info(s.body).name,
+                        sim.attention.scores[s.body.index()]
                     ),
                 });
             }
@@ -483,325 +482,16 @@ pub fn capsule_key(half_height: f32, radius: f32) -> MeshKey {
     }
 }
 
-/// The mouth's inside, seen when the lips part: a dark cavity behind the
-/// lips, placed from the middle of the lips' deformed edges, and the teeth,
-/// fixed to the bones: the upper incisors to the skull, the lower ones to
-/// the jaw, turning with it (F7), all in the face frame `face_frame`. The
-/// lips move over the teeth: a raised upper lip bares the upper teeth, a
-/// lowered lower lip the lower ones. Teeth are drawn only when the lips
-/// are apart (closed lips hide them; drawn, they would show through the
-/// seam).
-fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
-    let model = &sim.model().face;
-    let (mesh, l) = (&model.mesh, &model.mesh.landmarks);
-    let mid = |rim: &[u32]| rim[rim.len() / 2] as usize;
-    let (ui, li) = (mid(&mesh.rims.upper_lip), mid(&mesh.rims.lower_lip));
-    let (upper, lower) = (
-        Vec3::from_array(face[ui].pos),
-        Vec3::from_array(face[li].pos),
-    );
-    let gap = upper.distance(lower);
-    let w = l.mouth_corner.x;
-    let ellipsoid = |centre: Vec3, half: Vec3, color| Draw {
-        mesh: MeshKey::Sphere,
-        model: face_frame * Mat4::from_scale_rotation_translation(half, Quat::IDENTITY, centre),
-        color,
-        material: Material::Plain,
-    };
-    // The cavity is dark and reaches past the mouth's corners, which lie
-    // well behind its middle, so the neck inside the head never shows
-    // through the opening; with the teeth showing, its front stands behind
-    // the canines (the head's inside between is drawn dark, shader.wgsl).
-    // Behind closed lips it only darkens the seam and stays within the
-    // mouth's width: that close to the lips a wider one would come out
-    // through the cheeks beside the corners.
-    let cavity = |front: f32, reach: f32| {
-        let half_d = 0.026;
-        ellipsoid(
-            Vec3::new(0.0, (upper.y + lower.y) / 2.0, front - half_d),
-            Vec3::new(w * reach, 0.02 + gap * 0.6, half_d),
-            MOUTH,
-        )
-    };
-    let lips_back = upper.z.min(lower.z) - 0.006;
-    if gap < TEETH_SHOW_GAP {
-        return vec![cavity(lips_back, 1.0)];
-    }
-    // Incisal edges at rest: the upper one a little below the upper lip's
-    // rest edge and behind it; the lower one overlapped by the upper
-    // (overbite) and behind it (overjet).
-    let rest_lip = mesh.positions[ui];
-    let upper_edge = Vec3::new(0.0, rest_lip.y - INCISOR_SHOW, rest_lip.z - INCISOR_DEPTH);
-    let lower_rest = upper_edge + Vec3::new(0.0, OVERBITE, -OVERJET);
-    let jaw = &model.rig.jaw;
-    let theta = sim.face_state.activation.jaw_deg.to_radians();
-    let lower_edge = lower_rest + crate::face::muscle::jaw_rotation(lower_rest - jaw.pivot, theta);
-    // Lips bunched in front of the teeth (a tightened mouth pulls the skin
-    // above and below the lips over them) must still cover them: the teeth
-    // go back behind the nearest skin in front of them, if it is nearer
-    // than their place on the bones (the surface has no lip thickness).
-    let half_w = w * 0.62;
-    let (y0, y1) = (lower_edge.y - 0.01, upper_edge.y + 0.01);
-    let skin = face
-        .iter()
-        .map(|v| Vec3::from_array(v.pos))
-        .filter(|p| p.x.abs() < half_w && (y0..y1).contains(&p.y))
-        .filter(|p| p.z > rest_lip.z - LIP_REACH)
-        .fold(f32::INFINITY, |z, p| z.min(p.z));
-    let push = (upper_edge.z - (skin - 0.001)).max(0.0);
-    // Light reaches teeth behind the lips only through the opening: the
-    // open fraction of their view out of a slit of width `gap` at the
-    // lips' depth `d` is about g / (g + 2 d); scaled so a wide-open mouth
-    // is fully lit.
-    let lit = (1.2 * gap / (gap + 2.0 * INCISOR_DEPTH)).clamp(0.3, 1.0);
-    // The cavity stands behind the upper canines and behind the lower
-    // ones, which the jaw carries back as it opens (about 6 mm behind the
-    // lower incisors round their smaller arch).
-    let front = (upper_edge.z - CAVITY_BEHIND_TEETH).min(lower_edge.z - 0.007) - push;
-    let mut draws = vec![cavity(lips_back.min(front), 1.6)];
-    // Each arch's teeth, midline outward, along a circle through the
-    // incisal midpoint; the lower arch turns with the jaw.
-    let arches = [
-        (upper_edge, &UPPER_TEETH, UPPER_ARCH_R, 1.0, 0.0),
-        (lower_rest, &LOWER_TEETH, LOWER_ARCH_R, -1.0, theta),
-    ];
-    for (edge, teeth, radius, up, turn) in arches {
-        let mut s = 0.0;
-        for &(width, height) in teeth.iter() {
-            let phi = (s + width / 2.0) / radius;
-            s += width;
-            let back = radius * (1.0 - phi.cos());
-            // Teeth further round the arch sit deeper in the mouth's shade.
-            let shade = lit * (1.0 - back / 0.02).clamp(0.45, 1.0);
-            let colour = [TEETH[0] * shade, TEETH[1] * shade, TEETH[2] * shade, 1.0];
-            for side in [-1.0f32, 1.0] {
-                let local = Vec3::new(
-                    side * radius * phi.sin(),
-                    up * height / 2.0,
-                    -back - TOOTH_HALF_DEPTH,
-                );
-                let root = edge + local;
-                let centre = root + crate::face::muscle::jaw_rotation(root - jaw.pivot, turn)
-                    - Vec3::Z * push;
-                let rotation = Quat::from_rotation_x(turn) * Quat::from_rotation_y(side * phi);
-                // A crown is a flat-fronted, rounded block; the narrow gaps
-                // between them show the cavity as the lines between teeth.
-                draws.push(Draw {
-                    mesh: MeshKey::Tooth,
-                    model: face_frame
-                        * Mat4::from_scale_rotation_translation(
-                            Vec3::new(width * 0.46, height / 2.0, TOOTH_HALF_DEPTH),
-                            rotation,
-                            centre,
-                        ),
-                    color: colour,
-                    material: Material::Plain,
-                });
-            }
-        }
-    }
-    draws
-}
-
-/// Crown width (along the arch) and height of each tooth from the midline
-/// out to the second premolar, m (Wheeler's mean crown dimensions: Nelson
-/// 2015, Wheeler's Dental Anatomy, 10th ed.). Only what the lips' opening
-/// frames is seen; molars never are.
-const UPPER_TEETH: [(f32, f32); 5] = [
-    (0.0085, 0.0105),
-    (0.0065, 0.0090),
-    (0.0075, 0.0100),
-    (0.0070, 0.0085),
-    (0.0065, 0.0080),
-];
-const LOWER_TEETH: [(f32, f32); 5] = [
-    (0.0050, 0.0090),
-    (0.0055, 0.0095),
-    (0.0070, 0.0110),
-    (0.0070, 0.0085),
-    (0.0070, 0.0080),
-];
-/// Radii of the circles the front teeth follow, m: the upper canines'
-/// tips lie about 17 mm either side of the midline and 9 mm behind the
-/// incisors (intercanine width about 34 mm, lower about 26 mm: Bishara et
-/// al. 1997, Am. J. Orthod. 111:401), a circle of radius 21 mm (16 mm).
-const UPPER_ARCH_R: f32 = 0.021;
-const LOWER_ARCH_R: f32 = 0.016;
-/// Half the thickness drawn of a crown, front to back, m (our choice:
-/// only the front face shows).
-const TOOTH_HALF_DEPTH: f32 = 0.003;
-
-/// How far the cavity's front stands behind the upper incisors' when the
-/// teeth show, m: behind the canines' crowns (about 8 mm back round the
-/// arch, 6 mm thick), so the upper front teeth are all seen.
-const CAVITY_BEHIND_TEETH: f32 = 0.014;
-
-/// How far the upper incisors reach below the upper lip's rest edge, m:
-/// about 2 mm in young men with the lips apart at rest (Vig & Brundo 1978,
-/// J. Prosthet. Dent. 39:502: 1-3.5 mm, more in women and the young).
-const INCISOR_SHOW: f32 = 0.002;
-
-/// How far the upper incisors' front sits behind the upper lip's edge, m
-/// (the lip's thickness at its edge; our choice).
-const INCISOR_DEPTH: f32 = 0.004;
-
-/// Vertical overlap and horizontal step of the lower incisors behind the
-/// upper ones in a closed bite, m: the orthodontic norm of about 2 mm each.
-const OVERBITE: f32 = 0.002;
-const OVERJET: f32 = 0.0025;
-
-/// Skin up to this far behind the upper lip's rest edge can lie in front
-/// of the teeth (the lips and the skin around them), m.
-const LIP_REACH: f32 = 0.015;
-
-/// Lips further apart than this show the teeth, m.
-const TEETH_SHOW_GAP: f32 = 0.003;
-
-/// Ears are a little redder than the face.
-const EAR: [f32; 4] = [SKIN[0] * 1.04, SKIN[1] * 0.95, SKIN[2] * 0.95, 1.0];
-
-/// Lashes, m: upper and lower length at mid-lid (Thibaut et al. 2010,
-/// Br. J. Dermatol. 163:1023: upper 8-12 mm, lower 6-8 mm; shorter here,
-/// seen curled).
-const LASH_LENGTH: [f32; 2] = [0.006, 0.0018];
-/// Thickness of the lid at its margin, m (our choice: a thin ledge that
-/// reads as the lid's edge).
-const LID_THICKNESS: f32 = 0.0018;
-/// The lid margin's moist, pinker skin.
-const LID_MARGIN: [f32; 4] = [0.55, 0.30, 0.27, 1.0];
-const LASH: [f32; 4] = {
-    let l = crate::face::appearance::FaceStyle::DEFAULT.lashes;
-    [l[0], l[1], l[2], 1.0]
-};
-
-/// Lashes along each lid, spaced this far apart at the root, m (people
-/// have 90-160 upper and 70-80 lower lashes in several rows; one row of
-/// strands this close, each a fraction of a pixel wide at sparring
-/// distance, reads as the same soft dark fringe).
-const LASH_SPACING: f32 = 0.0008;
-/// Width of a lash at its root, m (a lash is about 0.1 mm thick; drawn
-/// wider, as several lashes of a row overlap).
-const LASH_WIDTH: f32 = 0.0008;
-/// Depth of the upper lashes' dense roots along the lid's edge, m (our
-/// choice: about a millimetre, where the lashes stand in two or three rows,
-/// and the lid's edge reads dark in any light).
-const LASH_ROOT: f32 = 0.0013;
-
-/// Eyelashes and lid margins: a curled fringe of thin tapered strands on
-/// each lid rim and a narrow ledge behind it (the lid's thickness), rooted
-/// on the deformed rim so they ride every lid movement and blink. The
-/// strands are spaced along the rim's length, not per mesh vertex, so the
-/// fringe is as dense at every mesh resolution; each strand's length and
-/// lean vary a little (a fixed pattern, no randomness), the outer ones
-/// lean out towards the eye's corner. The upper fringe sweeps forward and
-/// up, the lower forward and down; both taper to nothing at the corners.
-/// A triangle list, face frame.
-fn lashes(rims: &crate::face::mesh::Rims, face: &[Vertex]) -> Vec<Vertex> {
-    let mut out = Vec::new();
-    let vertex = |i: u32| {
-        let v = &face[i as usize];
-        (Vec3::from_array(v.pos), Vec3::from_array(v.normal))
-    };
-    for (rim, len, lift) in rims
-        .upper_lid
-        .iter()
-        .map(|r| (r, LASH_LENGTH[0], 1.0))
-        .chain(rims.lower_lid.iter().map(|r| (r, LASH_LENGTH[1], -1.0)))
-    {
-        let n = rim.len();
-        if n < 2 {
-            continue;
-        }
-        // The lid's margin: a ledge from the rim back toward the eyeball,
-        // the lid's thickness, seen from below (upper lid) or above.
-        let ledge = |i: usize| {
-            let (p, nrm) = vertex(rim[i]);
-            [p, p - nrm * LID_THICKNESS]
-        };
-        for i in 0..n - 1 {
-            let (a, b) = (ledge(i), ledge(i + 1));
-            let quad = [a[0], b[0], b[1], a[0], b[1], a[1]];
-            let normal = Vec3::Y * -lift;
-            out.extend(quad.map(|p| Vertex::coloured(p, normal, LID_MARGIN)));
-        }
-        // Arc length along the deformed rim.
-        let mut at = vec![0.0f32; n];
-        for i in 1..n {
-            at[i] = at[i - 1] + vertex(rim[i]).0.distance(vertex(rim[i - 1]).0);
-        }
-        let total = at[n - 1];
-        // The upper lashes' roots: dense enough to read as one dark line
-        // along the lid's edge (what the eye's outline is at a distance),
-        // thinning to the corners.
-        if lift > 0.0 {
-            let band = |i: usize| {
-                let (p, nrm) = vertex(rim[i]);
-                let xi = 2.0 * at[i] / total.max(1e-9) - 1.0;
-                let out_dir = (nrm + Vec3::Z).normalize_or(Vec3::Z);
-                let width = LASH_ROOT * (1.0 - xi * xi).max(0.0).sqrt().sqrt();
-                [p, p + (out_dir + Vec3::Y).normalize_or(Vec3::Y) * width]
-            };
-            for i in 0..n - 1 {
-                let (a, b) = (band(i), band(i + 1));
-                let quad = [a[0], b[0], b[1], a[0], b[1], a[1]];
-                let normal = (b[0] - a[0]).cross(a[1] - a[0]).normalize_or(Vec3::Z);
-                out.extend(quad.map(|p| Vertex::coloured(p, normal, LASH)));
-            }
-        }
-        let outer_last = vertex(rim[n - 1]).0.x.abs() > vertex(rim[0]).0.x.abs();
-        let count = (total / LASH_SPACING) as usize;
-        let mut seg = 0;
-        for k in 0..count {
-            let s = (k as f32 + 0.5) / count as f32 * total;
-            while seg + 2 < n && at[seg + 1] < s {
-                seg += 1;
-            }
-            let f = ((s - at[seg]) / (at[seg + 1] - at[seg]).max(1e-9)).clamp(0.0, 1.0);
-            let ((p0, n0), (p1, n1)) = (vertex(rim[seg]), vertex(rim[seg + 1]));
-            let root = p0.lerp(p1, f);
-            let along = (p1 - p0).normalize_or(Vec3::X);
-            let nrm = n0.lerp(n1, f);
-            // xi in [-1, 1] from one corner to the other; `outer` is +1 at
-            // the outer corner (the rim end farther from the midline).
-            let xi = 2.0 * s / total - 1.0;
-            let outer = if outer_last { xi } else { -xi };
-            let outward = if outer_last { along } else { -along };
-            // A fixed, irregular pattern of length and lean.
-            let jitter = |m: f32| (k as f32 * m).sin();
-            let l = len * (1.0 - xi * xi).max(0.0).sqrt() * (0.85 + 0.15 * jitter(12.9898));
-            if l <= 0.0 {
-                continue;
-            }
-            let lean = outward * (0.25 * outer.max(0.0) + 0.08 * jitter(78.233));
-            let out_dir = (nrm + Vec3::Z).normalize_or(Vec3::Z);
-            let mid = root + (out_dir * 0.6 + lean * 0.3) * l + Vec3::Y * lift * l * 0.08;
-            // Curled: out from the lid, then up (down for the lower lid).
-            let tip = root + (out_dir * 0.7 + lean) * l + Vec3::Y * lift * l * 0.6;
-            let w = along * (0.5 * LASH_WIDTH);
-            let strand = [
-                [root - w, root + w, mid + w * 0.5],
-                [root - w, mid + w * 0.5, mid - w * 0.5],
-                [mid - w * 0.5, mid + w * 0.5, tip],
-            ];
-            for t in strand {
-                let normal = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or(Vec3::Z);
-                out.extend(t.map(|p| Vertex::coloured(p, normal, LASH)));
-            }
-        }
-    }
-    out
-}
-
 /// The face deformed by the current face state, with recomputed normals
 /// and the wrinkles of its compressed skin.
 fn face_vertices(sim: &Sim) -> Vec<Vertex> {
     let face = &sim.model().face;
     let mesh = &face.mesh;
     let mut pos = vec![Vec3::ZERO; mesh.positions.len()];
-    crate::face::deform(face, &sim.face_state, &mut pos);
+    shisen_face::deform(face, &sim.face_state, &mut pos);
     let normals = compute_normals(&pos, &mesh.triangles);
     let mut wrinkles = Vec::new();
-    crate::face::wrinkle::measure(
+    shisen_face::wrinkle::measure(
         mesh,
         &face.wrinkle_basis,
         &face.params.skin,
@@ -824,7 +514,7 @@ fn face_vertices(sim: &Sim) -> Vec<Vertex> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::LoadedScene;
+    use shisen::scene::LoadedScene;
 
     #[test]
     fn frame_has_every_part_and_is_deterministic() {

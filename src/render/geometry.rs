@@ -17,10 +17,10 @@ pub struct Vertex {
     /// Linear RGBA, multiplied by the instance's colour.
     pub color: [f32; 4],
     /// Skin wrinkles: the lines' slopes and phases along the face's axes
-    /// ([`crate::face::wrinkle::WrinkleVertex`]); zero elsewhere.
+    /// ([`shisen_face::wrinkle::WrinkleVertex`]); zero elsewhere.
     pub wrinkle: [f32; 4],
     /// Painted borders, thresholded per pixel: the face's lips, brows and
-    /// hair ([`crate::face::appearance::Regions`]); on the bodies, the
+    /// hair ([`shisen_face::appearance::Regions`]); on the bodies, the
     /// signed distance inside one border (in its soft half-widths) and the
     /// RGB colour there; unused elsewhere.
     pub paint: [f32; 4],

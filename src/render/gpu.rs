@@ -632,7 +632,7 @@ impl Renderer {
             fill_dir: fill.extend(0.0).to_array(),
             floor_light: [floor_light, 0.0, 0.0, 0.0],
             face_regions: {
-                let s = &crate::face::appearance::FaceStyle::DEFAULT;
+                let s = &shisen_face::appearance::FaceStyle::DEFAULT;
                 [s.lips, s.brow, s.hair, s.inside].map(|c| [c[0], c[1], c[2], 1.0])
             },
         };
@@ -813,7 +813,7 @@ impl Renderer {
 /// prepended as WGSL constants: one home for the iris's size, which the
 /// face's lid tests measure against.
 fn shader_source() -> String {
-    use crate::anatomy::eye;
+    use shisen_gaze::anatomy::eye;
     let cos = |deg: f64| deg.to_radians().cos();
     format!(
         "const PUPIL_COS: f32 = {:.6};\nconst LIMBUS_COS: f32 = {:.6};\nconst IRIS_COS: f32 = {:.6};\n\
@@ -821,7 +821,7 @@ fn shader_source() -> String {
         cos(eye::PUPIL_DEG),
         cos(eye::LIMBUS_DEG),
         cos(eye::IRIS_DEG),
-        crate::face::appearance::MOUTH_INSIDE_LIMIT,
+        shisen_face::appearance::MOUTH_INSIDE_LIMIT,
         include_str!("shader.wgsl")
     )
 }

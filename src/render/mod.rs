@@ -11,6 +11,7 @@
 
 pub mod body;
 mod camera;
+mod face_parts;
 mod frame;
 pub mod geometry;
 mod gpu;
@@ -21,7 +22,7 @@ pub use gpu::{Blit, BlitBind, COLOR_FORMAT, COLOR_FORMAT_UNORM, RenderError, Ren
 
 use std::path::Path;
 
-use crate::sim::Sim;
+use shisen::sim::Sim;
 
 /// A device with no window, and a renderer on it.
 pub struct Headless {

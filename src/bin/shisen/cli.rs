@@ -6,9 +6,9 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 
 use shisen::physics::body::Group;
-use shisen::render::View;
 use shisen::scene::LoadedScene;
 use shisen::tools::table::Shard;
+use shisen_app::render::View;
 
 /// shisen (視線): a virtual human that boxes with you and looks where a person would.
 #[derive(Parser)]

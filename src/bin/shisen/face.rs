@@ -41,8 +41,8 @@ const CAPTION: u32 = 22;
 /// face camera, in one captioned grid.
 fn sheet(out: &std::path::Path, rows: usize, cell: (u32, u32)) -> Result<()> {
     use shisen::face::tables::Emotion;
-    use shisen::render::{Headless, Overlays, View, write_png};
     use shisen::scene::LoadedScene;
+    use shisen_app::render::{Headless, Overlays, View, write_png};
     if !(24..=400).contains(&rows) {
         anyhow::bail!("--rows: must be 24-400, got {rows}");
     }

@@ -61,7 +61,7 @@ fn main() -> ExitCode {
     }
     match cli.command {
         None if cli.print_bindings => {
-            print!("{}", shisen::input::DEFAULT_BINDINGS_RON);
+            print!("{}", shisen_app::input::DEFAULT_BINDINGS_RON);
             ExitCode::SUCCESS
         }
         None => {
@@ -71,7 +71,7 @@ fn main() -> ExitCode {
                 eprintln!("error: --exit-after: must be a non-negative number of seconds");
                 return ExitCode::from(2);
             }
-            let opts = shisen::app::AppOptions {
+            let opts = shisen_app::app::AppOptions {
                 scene: cli.scene,
                 bindings: cli.bindings,
                 exit_after: cli.exit_after,
@@ -90,12 +90,12 @@ fn main() -> ExitCode {
                 return ExitCode::from(2);
             }
             if let Some(p) = &opts.bindings
-                && let Err(e) = shisen::input::Bindings::load(p)
+                && let Err(e) = shisen_app::input::Bindings::load(p)
             {
                 eprintln!("error: {e}");
                 return ExitCode::from(2);
             }
-            match shisen::app::run(opts) {
+            match shisen_app::app::run(opts) {
                 Ok(()) => ExitCode::SUCCESS,
                 Err(e) => {
                     eprintln!("error: {e:#}");

@@ -10,9 +10,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use anyhow::{Context, Result, bail};
 use shisen::scene::validate::check_duration;
 
-use shisen::render::{Headless, Overlays, View, write_png};
 use shisen::sim::DT;
 use shisen::tools::headless;
+use shisen_app::render::{Headless, Overlays, View, write_png};
 
 use crate::cli::*;
 

@@ -130,7 +130,7 @@ pub fn sweep_cmd(
         shard,
     );
     let csv = out.join("sweep.csv");
-    let results = ResultsFile::open(&csv, &settings, tune::SWEEP_HEADER)?;
+    let results = ResultsFile::open(&csv, &settings, &tune::sweep_header())?;
     let rows = tune::sweep(group, &points, &Gains::default(), &results)?;
     results.finish()?;
     let best = rows

@@ -1,0 +1,405 @@
+//! Expression wrinkles from skin compression (docs/model/face.md,
+//! "Expression wrinkles", W1-W3).
+//!
+//! Skin is a thin, nearly inextensible sheet on soft tissue: where the
+//! muscles shorten it by more than its resting tension takes up, it does
+//! not shrink but buckles into lines across the direction of compression,
+//! keeping its length (Cerda & Mahadevan 2003, Phys. Rev. Lett. 90:074302).
+//! That one law gives the forehead's lines when frontalis lifts the brows,
+//! the vertical frown lines when corrugator draws them together, the lines
+//! across the nose's root when procerus and the nose wrinkler pull, and
+//! crow's feet when the orbital orbicularis squeezes: no line is placed by
+//! hand and none belongs to an emotion.
+//!
+//! [`measure`] compares the deformed mesh with its rest shape and gives
+//! each vertex the slope of the lines that take up its compression along
+//! the face's two axes, and their phases; the renderer bends the shading
+//! normal with them per pixel (`render/shader.wgsl`), so the lines are
+//! finer than the mesh.
+
+use super::mesh::HeadMesh;
+use glam::{IVec3, Mat2, Vec2, Vec3};
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+
+/// How the skin buckles (user-editable, `skin` in the muscle database).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SkinParams {
+    /// Spacing of the expression lines, metres. Our choice, 6 mm: a
+    /// raised adult forehead shows four to six lines over its 4-5 cm,
+    /// frown and nose lines are as close or closer. 0 turns wrinkles off;
+    /// at most 3 cm (a spacing given in millimetres would make every
+    /// vertex average the whole face).
+    #[serde(deserialize_with = "wrinkle_spacing")]
+    pub wrinkle_spacing_m: f64,
+    /// Compressive strain the skin takes up without buckling (living skin
+    /// is stretched over it at rest, and the fat under it thickens and
+    /// bulges), 0-1. Our choice, 0.25: Waters' fields compress the skin by
+    /// up to 0.75 near a muscle's bony end (procerus, corrugator); only the
+    /// strongest compressions fold (frown, raised forehead, wrinkled nose),
+    /// the pull of a smile or a weak expression leaves the skin smooth.
+    #[serde(deserialize_with = "shisen_gaze::util::check::unit_interval")]
+    pub wrinkle_onset_strain: f64,
+    /// Distance over which the skin spreads a linear muscle's pull, metres
+    /// (the standard deviation of S1's diffusion). Waters' cone (F2, F3)
+    /// moves the skin with a slope that jumps at the cone's edge and
+    /// converges it onto the bony end, which creased the skin along a V
+    /// from the nose's root in every frown; skin and the fat under it
+    /// carry a pull over about their own depth, 5-7 mm at the glabella and
+    /// the nose's root (De Greef et al. 2006, Forensic Sci. Int. 159S:S126,
+    /// soft-tissue depths by ultrasound). Our choice within that, 5 mm;
+    /// 0 keeps Waters' fields exactly (the seed profile).
+    #[serde(default = "default_pull_spread", deserialize_with = "pull_spread")]
+    pub pull_spread_m: f64,
+}
+
+fn default_pull_spread() -> f64 {
+    0.005
+}
+
+fn pull_spread<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    shisen_gaze::util::check::in_range(d, 0.0, MAX_SPACING_M)
+}
+
+fn wrinkle_spacing<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    shisen_gaze::util::check::in_range(d, 0.0, MAX_SPACING_M)
+}
+
+/// Widest line spacing (and pull spread) a database may give, m.
+const MAX_SPACING_M: f64 = 0.03;
+
+impl Default for SkinParams {
+    fn default() -> Self {
+        SkinParams {
+            wrinkle_spacing_m: 0.006,
+            wrinkle_onset_strain: 0.25,
+            pull_spread_m: default_pull_spread(),
+        }
+    }
+}
+
+/// Rest-shape data the measurement needs, computed once per mesh.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct WrinkleBasis {
+    /// Per triangle: its rest frame's two in-plane axes.
+    axes: Vec<[Vec3; 2]>,
+    /// Per triangle: inverse of the rest edge matrix in that frame.
+    inv_edges: Vec<Mat2>,
+    /// Per vertex `v`, `gather[start[v]..start[v + 1]]`: the triangles whose
+    /// strain it averages, with weights summing to 1.
+    start: Vec<u32>,
+    gather: Vec<(u32, f32)>,
+    /// Per vertex: the face's horizontal and vertical axes projected into
+    /// the rest surface (unit), and how much of each the averaged
+    /// triangles' planes hold (`t . P t`, 0 where the surface faces along
+    /// the axis).
+    tangents: Vec<[(Vec3, f32); 2]>,
+}
+
+impl WrinkleBasis {
+    /// Precompute the rest frames of `mesh` and each vertex's averaging
+    /// disk: the triangles within half a line spacing (at least the
+    /// vertex's own), weighted by area and a smooth fall-off (W1).
+    pub fn new(mesh: &HeadMesh, skin: &SkinParams) -> WrinkleBasis {
+        let p = &mesh.positions;
+        let mut b = WrinkleBasis::default();
+        let mut area = Vec::with_capacity(mesh.triangles.len());
+        let mut centroid = Vec::with_capacity(mesh.triangles.len());
+        let mut adjacent = vec![Vec::new(); p.len()];
+        let mut normal = Vec::with_capacity(mesh.triangles.len());
+        for (ti, t) in mesh.triangles.iter().enumerate() {
+            let [a, c1, c2] = t.map(|i| p[i as usize]);
+            let (e1, e2) = (c1 - a, c2 - a);
+            let n = e1.cross(e2);
+            let t1 = e1.normalize_or(Vec3::X);
+            let t2 = n.cross(t1).normalize_or(Vec3::Y);
+            let edges = Mat2::from_cols(
+                Vec2::new(e1.dot(t1), e1.dot(t2)),
+                Vec2::new(e2.dot(t1), e2.dot(t2)),
+            );
+            let ok = edges.determinant().abs() > 1e-14;
+            b.axes.push([t1, t2]);
+            b.inv_edges
+                .push(if ok { edges.inverse() } else { Mat2::ZERO });
+            area.push(if ok { 0.5 * n.length() } else { 0.0 });
+            centroid.push((a + c1 + c2) / 3.0);
+            normal.push(n.normalize_or_zero());
+            for &i in t {
+                adjacent[i as usize].push(ti as u32);
+            }
+        }
+        let half = 0.5 * skin.wrinkle_spacing_m.max(0.0) as f32;
+        // Each vertex's disk reaches at least past its own triangles.
+        let radius: Vec<f32> = adjacent
+            .iter()
+            .zip(p)
+            .map(|(tris, &v)| {
+                tris.iter()
+                    .map(|&t| 1.01 * centroid[t as usize].distance(v))
+                    .fold(half, f32::max)
+            })
+            .collect();
+        let cell = radius.iter().copied().fold(1e-6, f32::max);
+        let key = |q: Vec3| (q / cell).floor().as_ivec3();
+        let mut grid: HashMap<IVec3, Vec<u32>> = HashMap::new();
+        for (ti, c) in centroid.iter().enumerate() {
+            grid.entry(key(*c)).or_default().push(ti as u32);
+        }
+        b.start.push(0);
+        for (v, &r) in p.iter().zip(&radius) {
+            let first = b.gather.len();
+            let k = key(*v);
+            let mut total = 0.0;
+            for dz in -1..=1 {
+                for dy in -1..=1 {
+                    for dx in -1..=1 {
+                        for &t in grid
+                            .get(&(k + IVec3::new(dx, dy, dz)))
+                            .into_iter()
+                            .flatten()
+                        {
+                            let d2 = centroid[t as usize].distance_squared(*v) / (r * r);
+                            if d2 < 1.0 && area[t as usize] > 0.0 {
+                                let w = area[t as usize] * (1.0 - d2) * (1.0 - d2);
+                                b.gather.push((t, w));
+                                total += w;
+                            }
+                        }
+                    }
+                }
+            }
+            for g in &mut b.gather[first..] {
+                g.1 /= total;
+            }
+            b.start.push(b.gather.len() as u32);
+        }
+        b.tangents = mesh
+            .normals
+            .iter()
+            .enumerate()
+            .map(|(v, &n)| {
+                let gather = &b.gather[b.start[v] as usize..b.start[v + 1] as usize];
+                [Vec3::X, Vec3::Y].map(|axis| {
+                    let t = axis - n * n.dot(axis);
+                    if t.length() < 0.3 {
+                        return (Vec3::ZERO, 0.0);
+                    }
+                    let t = t.normalize();
+                    let held: f32 = gather
+                        .iter()
+                        .map(|&(tri, w)| w * (1.0 - t.dot(normal[tri as usize]).powi(2)))
+                        .sum();
+                    (t, held)
+                })
+            })
+            .collect();
+        b
+    }
+}
+
+/// Per-vertex wrinkle data for the renderer: `[s_x, s_y, x / L, y / L]`,
+/// the peak slopes (W2) of the lines taking up the skin's compression along
+/// the face's horizontal (`x`) and vertical (`y`) axes, and their phases in
+/// wavelengths of spacing `L` (W3). Zero slope where the skin along that
+/// axis is not compressed past onset.
+pub type WrinkleVertex = [f32; 4];
+
+/// Compression of the skin along unit tangent `t` under the averaged Green
+/// strain `e[..6]` and area ratio `e[6]` (W1): `1 - stretch` along `t`,
+/// but no more than the area lost, `1 - J`. The triangles averaged lie in
+/// slightly different planes, so `t` lies only partly in them: the strain
+/// is divided by `held = t . P t`, the part of `t` their planes hold (a
+/// uniform shrink then reads the same on a curved face as on a flat one).
+/// A shear shortens one diagonal as much as it stretches the other and
+/// keeps the area: the skin slides on its fat rather than folding.
+fn compression(e: &[f32; 7], t: Vec3, held: f32) -> f32 {
+    let et = Vec3::new(
+        e[0] * t.x + e[3] * t.y + e[4] * t.z,
+        e[3] * t.x + e[1] * t.y + e[5] * t.z,
+        e[4] * t.x + e[5] * t.y + e[2] * t.z,
+    );
+    let along = 1.0 - (1.0 + 2.0 * t.dot(et) / held).max(0.0).sqrt();
+    along.min(1.0 - e[6]) // (W1)
+}
+
+/// Slopes of the two families of lines from the compressions `cx`, `cy`
+/// along the face's axes past the onset `c0` (W2). A sheet squeezed both
+/// ways buckles across the stronger squeeze only, as far as it exceeds the
+/// weaker; squeezed alike both ways it does not fold but thickens (the
+/// fat under the skin bulges). Lines of spacing `L` and amplitude `A` keep
+/// the skin's length when `(pi A / L)^2` equals the excess left, so their
+/// peak slope `2 pi A / L` is `2 sqrt(excess)`, whatever the spacing.
+pub fn buckle(cx: f32, cy: f32, c0: f32) -> [f32; 2] {
+    let (ex, ey) = ((cx - c0).max(0.0), (cy - c0).max(0.0));
+    [(ex - ey).max(0.0), (ey - ex).max(0.0)].map(|e| 2.0 * e.sqrt()) // (W2)
+}
+
+/// Measure the compression of `deformed` against the rest shape (W1) and
+/// write each vertex's wrinkle data into `out`.
+///
+/// The strain is resolved on the face's two axes rather than followed
+/// along its principal direction: expression lines run across the
+/// forehead, up the glabella, across the nose's root and out from the
+/// eye corners, along these axes, and two fixed families of lines stay
+/// straight and continuous where a principal direction would swing from
+/// vertex to vertex and break them up.
+pub fn measure(
+    mesh: &HeadMesh,
+    basis: &WrinkleBasis,
+    skin: &SkinParams,
+    deformed: &[Vec3],
+    out: &mut Vec<WrinkleVertex>,
+) {
+    let n = mesh.positions.len();
+    out.clear();
+    out.resize(n, [0.0; 4]);
+    if skin.wrinkle_spacing_m <= 0.0 {
+        return;
+    }
+    // Green strain E = (F^T F - I) / 2 of each triangle, as a symmetric
+    // 3x3 tensor [xx, yy, zz, xy, xz, yz], and its area ratio J.
+    let strain: Vec<[f32; 7]> = mesh
+        .triangles
+        .iter()
+        .enumerate()
+        .map(|(ti, t)| {
+            let [a, c1, c2] = t.map(|i| deformed[i as usize]);
+            let inv = basis.inv_edges[ti];
+            // Deformation gradient F (3x2): deformed edges times the
+            // inverse rest edges; its columns are the images of the rest
+            // frame's axes.
+            let fa = (c1 - a) * inv.x_axis.x + (c2 - a) * inv.x_axis.y;
+            let fb = (c1 - a) * inv.y_axis.x + (c2 - a) * inv.y_axis.y;
+            let e00 = 0.5 * (fa.dot(fa) - 1.0);
+            let e01 = 0.5 * fa.dot(fb);
+            let e11 = 0.5 * (fb.dot(fb) - 1.0);
+            let [t1, t2] = basis.axes[ti];
+            let m = |i: usize, j: usize| {
+                e00 * t1[i] * t1[j] + e01 * (t1[i] * t2[j] + t2[i] * t1[j]) + e11 * t2[i] * t2[j]
+            };
+            let j = fa.cross(fb).length();
+            [m(0, 0), m(1, 1), m(2, 2), m(0, 1), m(0, 2), m(1, 2), j]
+        })
+        .collect();
+    let spacing = skin.wrinkle_spacing_m as f32;
+    let onset = skin.wrinkle_onset_strain as f32;
+    for (i, out) in out.iter_mut().enumerate() {
+        // W1: the strain averaged over the vertex's disk.
+        let mut e = [0.0f32; 7];
+        let range = basis.start[i] as usize..basis.start[i + 1] as usize;
+        for &(t, w) in &basis.gather[range] {
+            for (ek, sk) in e.iter_mut().zip(&strain[t as usize]) {
+                *ek += w * sk;
+            }
+        }
+        let along = |(t, held): (Vec3, f32)| {
+            if held < 0.1 {
+                0.0
+            } else {
+                compression(&e, t, held)
+            }
+        };
+        let p = deformed[i];
+        // W3: phases in wavelengths along each axis, of the skin's present
+        // place (lines run straight across the squeeze that makes them).
+        let [tx, ty] = basis.tangents[i];
+        let [sx, sy] = buckle(along(tx), along(ty), onset);
+        *out = [sx, sy, p.x / spacing, p.y / spacing];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Face;
+    use crate::mesh::MeshParams;
+    use crate::params::FaceParams;
+
+    fn face() -> Face {
+        Face::new(MeshParams { rows: 32 }, FaceParams::default_params())
+    }
+
+    #[test]
+    fn rest_and_rigid_motion_make_no_wrinkles() {
+        let f = face();
+        let skin = SkinParams::default();
+        let mut out = Vec::new();
+        measure(
+            &f.mesh,
+            &f.wrinkle_basis,
+            &skin,
+            &f.mesh.positions,
+            &mut out,
+        );
+        assert!(out.iter().all(|w| w[0] == 0.0 && w[1] == 0.0));
+        let r = glam::Quat::from_rotation_y(0.7) * glam::Quat::from_rotation_x(-0.3);
+        let moved: Vec<Vec3> = f
+            .mesh
+            .positions
+            .iter()
+            .map(|&p| r * p + Vec3::new(0.1, -0.2, 0.3))
+            .collect();
+        measure(&f.mesh, &f.wrinkle_basis, &skin, &moved, &mut out);
+        assert!(out.iter().all(|w| w[0] == 0.0 && w[1] == 0.0));
+    }
+
+    #[test]
+    fn uniform_shrink_thickens_the_skin_without_lines() {
+        // Shrinking the whole head by 35 % compresses every direction by
+        // 0.35, past the 25 % onset both ways alike: no family dominates,
+        // the skin bulges rather than folds (W2), everywhere on the head.
+        let f = face();
+        let skin = SkinParams::default();
+        for scale in [0.65, 0.8] {
+            let shrunk: Vec<Vec3> = f.mesh.positions.iter().map(|&p| scale * p).collect();
+            let mut out = Vec::new();
+            measure(&f.mesh, &f.wrinkle_basis, &skin, &shrunk, &mut out);
+            let front = f.mesh.normals.iter().zip(&out).filter(|(n, _)| n.z > 0.8);
+            for (_, w) in front {
+                assert!(w[0] < 0.05 && w[1] < 0.05, "{scale}: {w:?}");
+            }
+        }
+    }
+
+    /// W2: the stronger squeeze's lines take up its excess over the
+    /// weaker one's, with the length-keeping slope; below onset, nothing.
+    #[test]
+    fn the_stronger_squeeze_buckles_by_its_excess() {
+        let want = |e: f32| 2.0 * e.sqrt();
+        assert_eq!(buckle(0.35, 0.0, 0.25), [want(0.10), 0.0]);
+        assert_eq!(buckle(0.0, 0.35, 0.25), [0.0, want(0.10)]);
+        let [x, y] = buckle(0.45, 0.30, 0.25);
+        assert!((x - want(0.15)).abs() < 1e-6 && y == 0.0);
+        assert_eq!(buckle(0.4, 0.4, 0.25), [0.0, 0.0]);
+        assert_eq!(buckle(0.2, 0.1, 0.25), [0.0, 0.0]);
+    }
+
+    #[test]
+    fn one_way_squeeze_buckles_across_it() {
+        // Squeezing vertically by 40 %: on the forehead the vertical family
+        // (lines across the brow) takes it up, the horizontal one is idle.
+        let f = face();
+        let skin = SkinParams::default();
+        let squeezed: Vec<Vec3> = f
+            .mesh
+            .positions
+            .iter()
+            .map(|&p| Vec3::new(p.x, 0.6 * p.y, p.z))
+            .collect();
+        let mut out = Vec::new();
+        measure(&f.mesh, &f.wrinkle_basis, &skin, &squeezed, &mut out);
+        let (i, p) = f
+            .mesh
+            .positions
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| p.x.abs() < 0.01 && p.z > 0.0)
+            .min_by(|a, b| (a.1.y - 0.05).abs().total_cmp(&(b.1.y - 0.05).abs()))
+            .unwrap();
+        let w = out[i];
+        assert_eq!(w[0], 0.0);
+        assert!(w[1] > 2.0 * (0.35f32 - 0.25).sqrt(), "{w:?}");
+        // W3: the phase is of the skin's present place.
+        assert!((w[3] - 0.6 * p.y / 0.006).abs() < 1e-3);
+    }
+}

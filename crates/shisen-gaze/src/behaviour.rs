@@ -1,0 +1,566 @@
+//! The action plan (boxing.md): guard, attack, idle. It decides what the VH
+//! wants to look at (the top-down request, gaze.md 5) and where its gloves
+//! go (minimum-jerk reaches, tracked through the arm joints by the body plan's inverse kinematics).
+
+use glam::DVec3;
+use rand::{Rng, RngExt};
+use rand_distr::{Distribution, Normal};
+use serde::{Deserialize, Serialize};
+
+use crate::personality::Personality;
+use crate::target::{BodyId, Source, Spot, TargetId};
+use crate::util::math::min_jerk;
+use crate::vision::Seen;
+
+/// The eyes are "on" a target when both lines of sight are within this
+/// angle of it (rad): the planner's cue that the attack target has been
+/// looked at, and the telegraph expectation's test.
+pub const EYES_ON_TARGET: f64 = 2f64.to_radians();
+
+/// The VH's current action (boxing.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+pub enum ActionKind {
+    /// Guard stance, looking at the opponent's face.
+    Idle,
+    /// Intercepting an incoming glove.
+    Guard,
+    /// Looking at the target, then punching.
+    Attack,
+}
+
+/// Planner parameters (scene `vh.behaviour`).
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct BehaviourParams {
+    /// Attack decisions per second while both arms are free. The original
+    /// drew with probability 0.004 per step; as a rate it does not depend on
+    /// the step (Poisson: p = 1 - exp(-rate dt)).
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    pub attack_rate: f64,
+    /// Delay between the eyes landing on the target and the punch
+    /// (the telegraph), s.
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    pub punch_delay: f64,
+    /// Duration of the punch, out and back, s.
+    #[serde(deserialize_with = "crate::util::check::positive")]
+    pub punch_time: f64,
+    /// Standard deviation of the random offset added to the attack target, m.
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    pub target_spread: f64,
+    /// Probability of aiming at the body rather than the head.
+    #[serde(deserialize_with = "crate::util::check::unit_interval")]
+    pub body_shot_share: f64,
+    /// A glove is "aimed" above this speed, m/s.
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    pub guard_speed: f64,
+    /// ... heading within this angle of the head, torso or centre of mass, deg.
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    pub guard_angle_deg: f64,
+    /// ... with time to contact under this, s.
+    #[serde(deserialize_with = "crate::util::check::positive")]
+    pub guard_ttc: f64,
+    /// Time from seeing a threat to the guarding glove starting to move,
+    /// s. Default 0.13: with vision's 70 ms latency a reaction near 200 ms,
+    /// the simple visual reaction time of fast, trained people (Welford
+    /// 1980, "Reaction Times"; elite boxers react to a punch in well over
+    /// 150 ms). The seed: 0.
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    pub guard_reaction: f64,
+    /// Hold the guard this long after the threat is gone, s.
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    pub guard_hold: f64,
+    /// Whether the VH attacks at all (scenes that test gaze switch it off).
+    pub attacks: bool,
+    /// Farthest the VH steps its torso toward a punch's target, m: a punch
+    /// whose target lies beyond the arm's reach from the shoulder is
+    /// thrown with a lunge of the difference, up to this (boxers step
+    /// into a jab; the stand slides). Not a human figure: the 0.24 m the
+    /// VH's arm falls short of the avatar's head at the default distance,
+    /// with room to spare. 0 keeps the torso still (the seed).
+    #[serde(
+        default = "default_max_lunge",
+        deserialize_with = "crate::util::check::non_negative"
+    )]
+    pub max_lunge: f64,
+}
+
+fn default_max_lunge() -> f64 {
+    0.3
+}
+
+impl Default for BehaviourParams {
+    /// The original's rules (boxing.md): guard at 2 m/s, pi/8, 0.5 s; punch
+    /// 200 ms after the look, a ~0.5 s reach out and back.
+    fn default() -> Self {
+        BehaviourParams {
+            attack_rate: 0.25,
+            punch_delay: 0.2,
+            punch_time: 0.5,
+            target_spread: 0.03,
+            body_shot_share: 0.3,
+            guard_speed: 2.0,
+            guard_angle_deg: 22.5,
+            guard_ttc: 0.5,
+            guard_reaction: 0.13,
+            guard_hold: 0.25,
+            attacks: true,
+            max_lunge: default_max_lunge(),
+        }
+    }
+}
+
+/// Where the action wants the gaze (top-down request).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TopDown {
+    /// Name of the target ("head", "left_glove", "opponent_body", ...).
+    pub name: String,
+    /// Body the target rides on, if any.
+    pub body: Option<BodyId>,
+    /// Where on that body.
+    pub spot: Spot,
+    /// Offset from that body's centre (or the world point if no body), m.
+    pub offset: DVec3,
+    /// Attention amount.
+    pub amount: f64,
+}
+
+impl TopDown {
+    /// The request's identity, as chosen by `source`.
+    pub fn id(&self, source: Source) -> TargetId {
+        TargetId {
+            source,
+            body: self.body,
+            spot: self.spot,
+        }
+    }
+}
+
+/// The stronger of two top-down requests (the action's wins ties).
+fn strongest(action: TopDown, face: TopDown) -> TopDown {
+    if face.amount > action.amount {
+        face
+    } else {
+        action
+    }
+}
+
+/// What the opponent looks like to the planner this tick.
+pub struct OpponentView<'a> {
+    /// Everything the VH sees.
+    pub seen: &'a [Seen],
+    /// Names of all bodies, by index.
+    pub names: &'a [String],
+    /// The gaze target the eyes are physically on (line of sight within
+    /// 2 deg at the end of the last tick), if any.
+    pub eyes_on: Option<TargetId>,
+    /// Body indices of the opponent's head, left glove, right glove.
+    pub parts: [BodyId; 3],
+    /// The VH's head, torso and centre-of-mass positions (threat directions).
+    pub vh_points: [DVec3; 3],
+}
+
+/// A glove reach in progress, in world coordinates.
+#[derive(Clone, Debug, PartialEq)]
+struct Reach {
+    from: DVec3,
+    to: DVec3,
+    t0: f64,
+    dur: f64,
+    back: bool,
+}
+
+impl Reach {
+    fn at(&self, t: f64) -> DVec3 {
+        let s = (t - self.t0) / self.dur;
+        // Out and back uses one min-jerk profile per half.
+        if self.back {
+            let half = self.dur / 2.0;
+            if t - self.t0 < half {
+                self.from + (self.to - self.from) * min_jerk((t - self.t0) / half)
+            } else {
+                self.to + (self.from - self.to) * min_jerk((t - self.t0 - half) / half)
+            }
+        } else {
+            self.from + (self.to - self.from) * min_jerk(s)
+        }
+    }
+
+    fn done(&self, t: f64) -> bool {
+        t >= self.t0 + self.dur
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+enum Plan {
+    Idle,
+    Guard {
+        threat: BodyId,
+        hand: usize,
+        point: DVec3,
+        until: f64,
+    },
+    Attack {
+        hand: usize,
+        target: TopDown,
+        /// Decision time; the punch waits for the eyes to land.
+        decided: f64,
+        /// When the eyes landed on the target.
+        looked: Option<f64>,
+        thrown: bool,
+    },
+}
+
+/// The planner's evolving state.
+#[derive(Clone, Debug)]
+pub struct Behaviour {
+    plan: Plan,
+    reaches: [Option<Reach>; 2],
+    /// The torso's step into a punch (an offset from rest, out and back
+    /// with the punch).
+    lunge: Option<Reach>,
+    /// Guard-stance glove positions (world), left and right.
+    stance: [DVec3; 2],
+    /// Punches the VH has thrown.
+    pub punches_thrown: u32,
+}
+
+impl Default for Behaviour {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Behaviour {
+    /// Idle, gloves in the guard stance.
+    pub fn new() -> Self {
+        Behaviour {
+            plan: Plan::Idle,
+            reaches: [None, None],
+            lunge: None,
+            stance: [DVec3::new(0.11, 1.56, 0.27), DVec3::new(-0.11, 1.56, 0.27)],
+            punches_thrown: 0,
+        }
+    }
+
+    /// The current action.
+    pub fn action(&self) -> ActionKind {
+        match self.plan {
+            Plan::Idle => ActionKind::Idle,
+            Plan::Guard { .. } => ActionKind::Guard,
+            Plan::Attack { .. } => ActionKind::Attack,
+        }
+    }
+
+    /// What the current action is about: the attack target or the
+    /// incoming glove (body name or point name); `None` while idle.
+    pub fn target_name<'a>(&'a self, names: &'a [String]) -> Option<&'a str> {
+        match &self.plan {
+            Plan::Idle => None,
+            Plan::Guard { threat, .. } => Some(&names[threat.index()]),
+            Plan::Attack { target, .. } => Some(&target.name),
+        }
+    }
+
+    /// True while the VH's punch is in flight (after the telegraph).
+    pub fn punching(&self) -> bool {
+        matches!(self.plan, Plan::Attack { thrown: true, .. })
+    }
+
+    fn glove(&self, hand: usize, t: f64) -> DVec3 {
+        self.reaches[hand]
+            .as_ref()
+            .map_or(self.stance[hand], |r| r.at(t))
+    }
+
+    /// Advance one tick: choose the action, return the top-down request.
+    pub fn step(
+        &mut self,
+        p: &BehaviourParams,
+        pers: &Personality,
+        view: &OpponentView,
+        t: f64,
+        dt: f64,
+        rng: &mut impl Rng,
+    ) -> TopDown {
+        for r in self.reaches.iter_mut().chain([&mut self.lunge]) {
+            if r.as_ref().is_some_and(|r| r.done(t)) {
+                *r = None;
+            }
+        }
+        // Watching the opponent's face is a standing top-down interest of a
+        // boxer (A_face); the action's request competes with it, so a boxer
+        // whose A_face exceeds A_guard keeps watching the face while it
+        // guards (the seed's "strong boxer").
+        let face = TopDown {
+            name: "head".into(),
+            body: Some(view.parts[0]),
+            spot: Spot::Centre,
+            offset: DVec3::ZERO,
+            amount: pers.a_face,
+        };
+        // Guard pre-empts everything (a threat seen now).
+        if let Some((threat, point, ttc)) = aimed_glove(p, view) {
+            // The VH's glove on the side the punch comes from (the opponent's
+            // left glove arrives on the VH's right).
+            let hand = if threat == view.parts[1] { 1 } else { 0 };
+            let start_new = !matches!(self.plan, Plan::Guard { threat: th, .. } if th == threat);
+            if start_new {
+                let from = self.glove(hand, t);
+                // The glove moves once the reaction time is over (the reach
+                // holds its start point until t0).
+                self.reaches[hand] = Some(Reach {
+                    from,
+                    to: point,
+                    t0: t + p.guard_reaction,
+                    dur: (0.3 * ttc).max(0.05),
+                    back: false,
+                });
+            }
+            self.plan = Plan::Guard {
+                threat,
+                hand,
+                point,
+                until: t + p.guard_hold,
+            };
+        }
+        match self.plan.clone() {
+            Plan::Guard {
+                threat,
+                hand,
+                until,
+                ..
+            } => {
+                if t >= until {
+                    let from = self.glove(hand, t);
+                    self.reaches[hand] = Some(Reach {
+                        from,
+                        to: self.stance[hand],
+                        t0: t,
+                        dur: 0.3,
+                        back: false,
+                    });
+                    self.plan = Plan::Idle;
+                } else {
+                    // gaze.md 5: guard looks at the incoming glove.
+                    return strongest(
+                        TopDown {
+                            name: view.names[threat.index()].clone(),
+                            body: Some(threat),
+                            spot: Spot::Centre,
+                            offset: DVec3::ZERO,
+                            amount: pers.a_guard,
+                        },
+                        face,
+                    );
+                }
+            }
+            Plan::Attack {
+                hand,
+                target,
+                decided,
+                mut looked,
+                thrown,
+            } => {
+                if looked.is_none()
+                    && view
+                        .eyes_on
+                        .is_some_and(|on| on.same_place(&target.id(Source::TopDown)))
+                {
+                    looked = Some(t);
+                }
+                // "Looks at the target at once, and after 200 ms throws the
+                // punch" (boxing.md): timed from when the eyes land, with a
+                // deadline in case they never do (a distraction won).
+                let punch_at = looked.map_or(decided + p.punch_delay + 0.3, |l| l + p.punch_delay);
+                if let Plan::Attack { looked: l, .. } = &mut self.plan {
+                    *l = looked;
+                }
+                if !thrown && t >= punch_at {
+                    match self.punch_reach(hand, &target, view, t, p) {
+                        Some(r) => {
+                            self.lunge = Self::lunge_for(hand, r.to, t, p);
+                            self.reaches[hand] = Some(r);
+                            self.punches_thrown += 1;
+                            self.plan = Plan::Attack {
+                                hand,
+                                target: target.clone(),
+                                decided,
+                                looked,
+                                thrown: true,
+                            };
+                        }
+                        // The target went out of view: call the attack off.
+                        None => self.plan = Plan::Idle,
+                    }
+                } else if thrown && self.reaches[hand].is_none() {
+                    self.plan = Plan::Idle;
+                }
+                if self.plan != Plan::Idle {
+                    return strongest(target, face);
+                }
+            }
+            Plan::Idle => {}
+        }
+        // Idle: maybe decide to attack (Poisson decision).
+        let free = self.reaches.iter().all(Option::is_none);
+        if p.attacks
+            && free
+            && rng.random::<f64>() < crate::util::math::poisson_step(p.attack_rate, dt)
+        {
+            let hand = rng.random_range(0..2usize);
+            let to_body = rng.random::<f64>() < p.body_shot_share;
+            let n = Normal::new(0.0, p.target_spread.max(1e-12)).expect("valid sd");
+            let offset = DVec3::new(n.sample(rng), n.sample(rng), 0.0);
+            let target = if to_body {
+                TopDown {
+                    name: "opponent_body".into(),
+                    body: Some(view.parts[0]),
+                    spot: Spot::Trunk,
+                    offset: DVec3::new(0.0, -0.35, 0.05) + offset,
+                    amount: pers.a_attack,
+                }
+            } else {
+                TopDown {
+                    name: "head".into(),
+                    body: Some(view.parts[0]),
+                    spot: Spot::Centre,
+                    offset,
+                    amount: pers.a_attack,
+                }
+            };
+            self.plan = Plan::Attack {
+                hand,
+                target: target.clone(),
+                decided: t,
+                looked: None,
+                thrown: false,
+            };
+            return strongest(target, face);
+        }
+        face
+    }
+
+    fn punch_reach(
+        &self,
+        hand: usize,
+        target: &TopDown,
+        view: &OpponentView,
+        t: f64,
+        p: &BehaviourParams,
+    ) -> Option<Reach> {
+        let base = view
+            .seen
+            .iter()
+            .find(|s| Some(s.body) == target.body)
+            .map(|s| s.position)?;
+        Some(Reach {
+            from: self.glove(hand, t),
+            to: base + target.offset,
+            t0: t,
+            dur: p.punch_time,
+            back: true,
+        })
+    }
+
+    /// The lunge a punch at `to` with glove `hand` needs: the part of the
+    /// shoulder-to-target distance beyond the straight arm (less 5 %),
+    /// horizontally toward the target, at most `max_lunge`.
+    fn lunge_for(hand: usize, to: DVec3, t: f64, p: &BehaviourParams) -> Option<Reach> {
+        use crate::anatomy::arm;
+        let shoulder = DVec3::from_array(arm::shoulder(hand));
+        let reach = 0.95 * (arm::UPPER + arm::FOREARM);
+        let len = ((to - shoulder).length() - reach).clamp(0.0, p.max_lunge);
+        let dir = DVec3::new(to.x - shoulder.x, 0.0, to.z - shoulder.z).normalize_or_zero();
+        (len > 0.0).then(|| Reach {
+            from: DVec3::ZERO,
+            to: dir * len,
+            t0: t,
+            dur: p.punch_time,
+            back: true,
+        })
+    }
+
+    /// Where the torso is stepped to now (offset from its rest position).
+    pub fn torso_offset(&self, t: f64) -> DVec3 {
+        self.lunge.as_ref().map_or(DVec3::ZERO, |r| r.at(t))
+    }
+
+    /// Desired world positions of the VH's left and right gloves now.
+    pub fn glove_targets(&self, t: f64) -> [DVec3; 2] {
+        [self.glove(0, t), self.glove(1, t)]
+    }
+}
+
+/// The aimed-glove test (boxing.md, Guard): the fastest opponent glove that
+/// is seen, faster than `guard_speed`, heading within `guard_angle_deg` of
+/// the VH's head, torso or centre of mass, with time to contact under
+/// `guard_ttc`. Returns (body, interception point at 0.4 ttc, ttc).
+pub fn aimed_glove(p: &BehaviourParams, view: &OpponentView) -> Option<(BodyId, DVec3, f64)> {
+    let cos_max = p.guard_angle_deg.to_radians().cos();
+    let mut best: Option<(BodyId, DVec3, f64)> = None;
+    for s in view.seen {
+        if s.body != view.parts[1] && s.body != view.parts[2] {
+            continue;
+        }
+        let speed = s.velocity.length();
+        if speed <= p.guard_speed {
+            continue;
+        }
+        let heading = s.velocity / speed;
+        for aim in view.vh_points {
+            let to = aim - s.position;
+            let dist = to.length();
+            if dist < 1e-9 || heading.dot(to / dist) < cos_max {
+                continue;
+            }
+            let ttc = dist / speed;
+            if ttc < p.guard_ttc && best.as_ref().is_none_or(|b| ttc < b.2) {
+                best = Some((s.body, s.position + s.velocity * (0.4 * ttc), ttc));
+            }
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn seen(body: usize, position: DVec3, velocity: DVec3) -> Seen {
+        Seen {
+            body: BodyId::new(body),
+            position,
+            velocity,
+            ..Seen::test_default()
+        }
+    }
+
+    #[test]
+    fn aimed_glove_test_follows_the_three_rules() {
+        let p = BehaviourParams::default();
+        let head = DVec3::new(0.0, 1.68, 0.0);
+        let vh_points = [head, DVec3::new(0.0, 1.25, 0.0), DVec3::new(0.0, 1.4, 0.0)];
+        let glove = DVec3::new(-0.1, 1.6, 0.7);
+        let towards = (head - glove).normalize();
+        let check = |v: DVec3| {
+            let s = [seen(5, glove, v)];
+            let names: Vec<String> = (0..7).map(|i| format!("b{i}")).collect();
+            let view = OpponentView {
+                seen: &s,
+                names: &names,
+                eyes_on: None,
+                parts: [4, 5, 6].map(BodyId::new),
+                vh_points,
+            };
+            aimed_glove(&p, &view)
+        };
+        assert!(check(towards * 4.0).is_some(), "fast and aimed");
+        assert!(check(towards * 1.5).is_none(), "too slow");
+        let sideways = DVec3::new(1.0, 0.0, -0.3).normalize() * 4.0;
+        assert!(check(sideways).is_none(), "not aimed");
+        // 0.7 m at 1.2 m/s... slow; at 2.1 m/s ttc = 0.34 s < 0.5: aimed
+        assert!(check(towards * 2.1).is_some());
+        let (_, point, ttc) = check(towards * 4.0).unwrap();
+        assert!((point - (glove + towards * 4.0 * 0.4 * ttc)).length() < 1e-9);
+    }
+}

@@ -1,0 +1,434 @@
+//! Vision: the list of bodies the VH sees this tick (gaze.md 3), and their
+//! bottom-up saliency (M1).
+//!
+//! A body is seen when its centre lies inside either eye's field of view
+//! (a per-eye field around that eye's current line of sight) and the ray
+//! from that eye to the centre hits the body itself first (occlusion, a
+//! ray query the world answers). The VH's own segments are skipped unless
+//! `see_self` is set.
+//!
+//! Vision reads the world through the small [`Scenery`] trait, so it runs
+//! on any world: the physics world implements it, and so can a host
+//! application's.
+
+use glam::{DQuat, DVec3, Vec3};
+use serde::{Deserialize, Serialize};
+
+pub use crate::target::BodyId;
+
+/// A body's orientation and motion, world frame (read only for bodies in
+/// view).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Motion {
+    /// Orientation.
+    pub orientation: DQuat,
+    /// Linear velocity.
+    pub velocity: DVec3,
+    /// Angular velocity.
+    pub angvel: DVec3,
+}
+
+/// What vision needs to know about the world it looks at.
+pub trait Scenery {
+    /// The VH's head orientation, world.
+    fn head_rotation(&self) -> DQuat;
+    /// Eye `k` (0 left, 1 right): its centre and its line of sight (unit), world.
+    fn eye(&self, k: usize) -> (Vec3, DVec3);
+    /// Number of bodies ([`BodyId`]s `0..n` name them).
+    fn body_count(&self) -> usize;
+    /// Whether body `b` is a part of the VH itself.
+    fn is_own(&self, b: BodyId) -> bool;
+    /// Centre of body `b`, world.
+    fn position(&self, b: BodyId) -> DVec3;
+    /// Orientation and motion of body `b`.
+    fn motion(&self, b: BodyId) -> Motion;
+    /// Whether the ray from `from` along `dir` (not normalised; its length
+    /// reaches the target's centre) hits body `target` before anything else
+    /// (VH parts never block: the eyes look out of the head).
+    fn first_hit(&self, from: Vec3, dir: DVec3, target: BodyId) -> bool;
+}
+
+/// One eye's field of view around its line of sight, degrees (gaze.md 3:
+/// human monocular field).
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct FieldOfView {
+    /// Toward the temple, 0-180.
+    #[serde(deserialize_with = "half_field")]
+    pub temporal_deg: f64,
+    /// Toward the nose, 0-180.
+    #[serde(deserialize_with = "half_field")]
+    pub nasal_deg: f64,
+    /// Up, 0-180.
+    #[serde(deserialize_with = "half_field")]
+    pub up_deg: f64,
+    /// Down, 0-180.
+    #[serde(deserialize_with = "half_field")]
+    pub down_deg: f64,
+}
+
+impl Default for FieldOfView {
+    fn default() -> Self {
+        FieldOfView {
+            temporal_deg: 100.0,
+            nasal_deg: 60.0,
+            up_deg: 60.0,
+            down_deg: 75.0,
+        }
+    }
+}
+
+/// One side of a field, degrees: at most half a turn.
+fn half_field<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    crate::util::check::in_range(d, 0.0, 180.0)
+}
+
+fn sight_distance<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    crate::util::check::in_range(d, 0.01, 1000.0)
+}
+
+/// Vision and saliency parameters (scene `vh.vision`).
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct VisionParams {
+    /// Per-eye field (the same numbers mirrored for the two eyes).
+    pub field: FieldOfView,
+    /// Bodies farther than this are not seen, m (0.01-1000).
+    #[serde(deserialize_with = "sight_distance")]
+    pub max_distance: f64,
+    /// Whether the VH sees its own body parts.
+    pub see_self: bool,
+    /// Whether hidden bodies are dropped (ray test).
+    pub occlusion: bool,
+    /// The original implementation's foveal weighting: multiply the score by
+    /// exp(-2 theta^2), theta the angle (rad) from the line of sight
+    /// (gaze.md 11). Off by default: the seed's (M1) has no such factor.
+    pub foveal_weight: bool,
+    /// The original's distance scaling: translation x3/r, expansion x2/r
+    /// (gaze.md 11). Off by default.
+    pub distance_scaling: bool,
+    /// The axis `e` the motion of (M1) is split along.
+    pub saliency_axis: SaliencyAxis,
+    /// Visual latency, s: the stages after vision (behaviour, attention)
+    /// act on what the eyes saw this long ago. Default 0.07: visual
+    /// responses reach V1 and the motion area MT 66-72 ms after a stimulus
+    /// (Schmolesky et al. 1998, J. Neurophysiol. 79:3272); the seed: 0.
+    #[serde(deserialize_with = "latency")]
+    pub latency: f64,
+}
+
+/// A latency, s: 0 to 1.
+fn latency<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    crate::util::check::in_range(d, 0.0, 1.0)
+}
+
+/// The axis along which (M1) splits a body's motion into "across" and
+/// "expansion".
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+pub enum SaliencyAxis {
+    /// The gaze direction (the mean of the two lines of sight), as (M1) is
+    /// printed: motion across the line of sight versus along it.
+    #[default]
+    Gaze,
+    /// The direction from the eyes to each body: "expansion" then means
+    /// looming toward the eyes wherever the body is in the field.
+    ToBody,
+}
+
+impl Default for VisionParams {
+    fn default() -> Self {
+        VisionParams {
+            field: FieldOfView::default(),
+            max_distance: 20.0,
+            see_self: false,
+            occlusion: true,
+            foveal_weight: false,
+            distance_scaling: false,
+            saliency_axis: SaliencyAxis::Gaze,
+            latency: 0.07,
+        }
+    }
+}
+
+/// A body in view, in the terms vision and attention use.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Seen {
+    /// Which body (see [`Scenery`]).
+    pub body: BodyId,
+    /// Centre, world.
+    pub position: DVec3,
+    /// Orientation, world.
+    pub orientation: DQuat,
+    /// Linear velocity, world.
+    pub velocity: DVec3,
+    /// Angular velocity, world.
+    pub angvel: DVec3,
+    /// Unit direction from the cyclopean eye (midpoint of the eyes), head frame.
+    pub dir_head: DVec3,
+    /// Distance from the cyclopean eye, m.
+    pub distance: f64,
+    /// Seen by the left / right eye.
+    pub by_eye: [bool; 2],
+    /// Velocity in the head's axes (own head motion compensated).
+    pub rel_velocity: DVec3,
+    /// Angular velocity in the head's axes.
+    pub rel_angvel: DVec3,
+    /// The three terms of (M1): translation, expansion, rotation.
+    pub terms: [f64; 3],
+    /// Bottom-up saliency A_i (M1, with the optional weights).
+    pub saliency: f64,
+}
+
+impl Seen {
+    /// An all-zero record (tests build on it).
+    pub fn test_default() -> Self {
+        Seen {
+            body: BodyId::new(0),
+            position: DVec3::ZERO,
+            orientation: DQuat::IDENTITY,
+            velocity: DVec3::ZERO,
+            angvel: DVec3::ZERO,
+            dir_head: DVec3::Z,
+            distance: 1.0,
+            by_eye: [true, true],
+            rel_velocity: DVec3::ZERO,
+            rel_angvel: DVec3::ZERO,
+            terms: [0.0; 3],
+            saliency: 0.0,
+        }
+    }
+}
+
+/// The three terms of the bottom-up saliency (M1) for velocity `v`, angular
+/// velocity `l` and unit line of sight `e`:
+/// `|v - (v.e) e|` (across), `|(v.e) e|` (expansion), `|(l.e) e|` (rotation).
+///
+/// `e` is the gaze direction as (M1) prints it, or, with
+/// [`SaliencyAxis::ToBody`], the direction to the body itself (the two
+/// agree for the fixated body).
+pub fn saliency_terms(v: DVec3, l: DVec3, e: DVec3) -> [f64; 3] {
+    let along = v.dot(e);
+    [
+        (v - along * e).length(), // (M1) translation across the line of sight
+        along.abs(),              // (M1) expansion / contraction
+        l.dot(e).abs(),           // (M1) rotation about the line of sight
+    ]
+}
+
+/// Whether a head-frame direction, as seen from one eye whose line of sight
+/// is `los` (unit, head frame), lies in that eye's field. `left` selects the
+/// eye (its temporal side is +X, the VH's left).
+pub fn in_field(f: &FieldOfView, los: DVec3, dir: DVec3, left: bool) -> bool {
+    let (ly, lp) = crate::util::math::yaw_pitch_of(los);
+    let (dy, dp) = crate::util::math::yaw_pitch_of(dir);
+    let mut dyaw = dy - ly;
+    if dyaw > std::f64::consts::PI {
+        dyaw -= std::f64::consts::TAU;
+    } else if dyaw < -std::f64::consts::PI {
+        dyaw += std::f64::consts::TAU;
+    }
+    let dpitch = dp - lp;
+    // Temporal is toward +yaw (left) for the left eye, -yaw for the right.
+    let (temporal, nasal) = if left {
+        (f.temporal_deg, f.nasal_deg)
+    } else {
+        (f.nasal_deg, f.temporal_deg)
+    };
+    let yaw_ok = dyaw <= temporal.to_radians() && -dyaw <= nasal.to_radians();
+    let pitch_ok = dpitch <= f.up_deg.to_radians() && -dpitch <= f.down_deg.to_radians();
+    yaw_ok && pitch_ok
+}
+
+/// Everything the VH sees now, with saliency. `open` says which eyes are
+/// open (a shut or covered eye sees nothing). `out` is reused between ticks.
+pub fn see(world: &impl Scenery, p: &VisionParams, open: [bool; 2], out: &mut Vec<Seen>) {
+    out.clear();
+    let head_rot = world.head_rotation();
+    let head_inv = head_rot.inverse();
+    let eyes = [0, 1].map(|k| {
+        let (pos, los_world) = world.eye(k);
+        (pos, head_inv * los_world)
+    });
+    let cyclops = ((eyes[0].0 + eyes[1].0) / 2.0).as_dvec3();
+    let gaze = (eyes[0].1 + eyes[1].1).normalize_or(DVec3::Z);
+    for i in BodyId::all(world.body_count()) {
+        if world.is_own(i) && !p.see_self {
+            continue;
+        }
+        let pos = world.position(i);
+        let to = pos - cyclops;
+        let distance = to.length();
+        if distance < 1e-6 || distance > p.max_distance {
+            continue;
+        }
+        let mut by_eye = [false; 2];
+        for (k, (eye_pos, los)) in eyes.iter().enumerate() {
+            if !open[k] {
+                continue;
+            }
+            let ray_dir = pos - eye_pos.as_dvec3();
+            if !in_field(&p.field, *los, head_inv * ray_dir.normalize(), k == 0) {
+                continue;
+            }
+            by_eye[k] = !p.occlusion || world.first_hit(*eye_pos, ray_dir, i);
+        }
+        if !by_eye[0] && !by_eye[1] {
+            continue;
+        }
+        let body = world.motion(i);
+        let (velocity, angvel) = (body.velocity, body.angvel);
+        // Head-relative motion (gaze.md 4): the body's own motion, in the
+        // head's axes. The agent's own head motion is compensated (as the
+        // vestibular signal and efference copy do for a person), so turning
+        // or rocking the head makes nothing salient; only bodies that move
+        // in the world do.
+        let rel_v = head_inv * velocity;
+        let rel_w = head_inv * angvel;
+        let dir_head = head_inv * (to / distance);
+        let axis = match p.saliency_axis {
+            SaliencyAxis::Gaze => gaze,
+            SaliencyAxis::ToBody => dir_head,
+        };
+        let mut terms = saliency_terms(rel_v, rel_w, axis); // (M1)
+        if p.distance_scaling {
+            terms[0] *= 3.0 / distance;
+            terms[1] *= 2.0 / distance;
+        }
+        let mut saliency = terms.iter().sum::<f64>();
+        if p.foveal_weight {
+            let theta = crate::util::math::angle_between(gaze, dir_head);
+            saliency *= (-2.0 * theta * theta).exp();
+        }
+        out.push(Seen {
+            body: i,
+            position: pos,
+            orientation: body.orientation,
+            velocity,
+            angvel,
+            dir_head,
+            distance,
+            by_eye,
+            rel_velocity: rel_v,
+            rel_angvel: rel_w,
+            terms,
+            saliency,
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn m1_terms_separate_the_three_motions() {
+        let e = DVec3::Z;
+        assert_eq!(
+            saliency_terms(DVec3::new(2.0, 0.0, 0.0), DVec3::ZERO, e),
+            [2.0, 0.0, 0.0]
+        );
+        assert_eq!(
+            saliency_terms(DVec3::new(0.0, 0.0, -3.0), DVec3::ZERO, e),
+            [0.0, 3.0, 0.0]
+        );
+        assert_eq!(
+            saliency_terms(DVec3::ZERO, DVec3::new(0.0, 0.0, 5.0), e),
+            [0.0, 0.0, 5.0]
+        );
+        // spin about an axis across the line of sight is not "rotation about" it
+        assert_eq!(
+            saliency_terms(DVec3::ZERO, DVec3::new(5.0, 0.0, 0.0), e),
+            [0.0, 0.0, 0.0]
+        );
+    }
+
+    /// (M1) splits motion along the gaze direction: a body 45 deg off the
+    /// line of sight looming straight at the eyes moves half across, half
+    /// along the gaze; measured against its own direction it only expands.
+    #[test]
+    fn m1_axis_is_the_gaze_direction_unless_asked_otherwise() {
+        let gaze = DVec3::Z;
+        let to_body = DVec3::new(1.0, 0.0, 1.0).normalize();
+        let v = -to_body * 2.0;
+        let [across, along, _] = saliency_terms(v, DVec3::ZERO, gaze);
+        assert!((across - 2f64.sqrt()).abs() < 1e-12 && (along - 2f64.sqrt()).abs() < 1e-12);
+        let [across, along, _] = saliency_terms(v, DVec3::ZERO, to_body);
+        assert!(across < 1e-12 && (along - 2.0).abs() < 1e-12);
+    }
+
+    /// One body looming at eyes that look straight ahead.
+    struct Looming;
+
+    impl Scenery for Looming {
+        fn head_rotation(&self) -> DQuat {
+            DQuat::IDENTITY
+        }
+        fn eye(&self, k: usize) -> (Vec3, DVec3) {
+            (
+                Vec3::new(if k == 0 { 0.03 } else { -0.03 }, 0.0, 0.0),
+                DVec3::Z,
+            )
+        }
+        fn body_count(&self) -> usize {
+            1
+        }
+        fn is_own(&self, _: BodyId) -> bool {
+            false
+        }
+        fn position(&self, _: BodyId) -> DVec3 {
+            DVec3::new(1.0, 0.0, 1.0)
+        }
+        fn motion(&self, _: BodyId) -> Motion {
+            Motion {
+                orientation: DQuat::IDENTITY,
+                velocity: -DVec3::new(1.0, 0.0, 1.0).normalize() * 2.0,
+                angvel: DVec3::ZERO,
+            }
+        }
+        fn first_hit(&self, _: Vec3, _: DVec3, _: BodyId) -> bool {
+            true
+        }
+    }
+
+    #[test]
+    fn see_splits_motion_along_the_chosen_axis() {
+        let terms = |axis| {
+            let p = VisionParams {
+                saliency_axis: axis,
+                ..VisionParams::default()
+            };
+            let mut out = Vec::new();
+            see(&Looming, &p, [true, true], &mut out);
+            out[0].terms
+        };
+        let g = terms(SaliencyAxis::Gaze);
+        assert!((g[0] - 2f64.sqrt()).abs() < 1e-9 && (g[1] - 2f64.sqrt()).abs() < 1e-9);
+        let b = terms(SaliencyAxis::ToBody);
+        assert!(b[0] < 1e-9 && (b[1] - 2.0).abs() < 1e-9, "{b:?}");
+    }
+
+    #[test]
+    fn field_edges_are_per_eye() {
+        let f = FieldOfView::default();
+        let los = DVec3::Z;
+        let at = |yaw: f64, pitch: f64| {
+            crate::util::math::dir_from_yaw_pitch(yaw.to_radians(), pitch.to_radians())
+        };
+        // left eye: temporal (+yaw) to 100 deg, nasal (-yaw) to 60 deg
+        assert!(in_field(&f, los, at(99.0, 0.0), true));
+        assert!(!in_field(&f, los, at(101.0, 0.0), true));
+        assert!(in_field(&f, los, at(-59.0, 0.0), true));
+        assert!(!in_field(&f, los, at(-61.0, 0.0), true));
+        // right eye mirrored
+        assert!(in_field(&f, los, at(-99.0, 0.0), false));
+        assert!(!in_field(&f, los, at(61.0, 0.0), false));
+        // vertical: up 60, down 75
+        assert!(in_field(&f, los, at(0.0, 59.0), true) && !in_field(&f, los, at(0.0, 61.0), true));
+        assert!(
+            in_field(&f, los, at(0.0, -74.0), true) && !in_field(&f, los, at(0.0, -76.0), true)
+        );
+        // the field moves with the line of sight
+        let turned = at(40.0, 0.0);
+        assert!(in_field(&f, turned, at(139.0, 0.0), true));
+    }
+}

@@ -1,0 +1,581 @@
+//! Checking a scene's expectations against the samples of a run, online
+//! (constant memory, whatever the run's length).
+
+use serde::{Deserialize, Serialize};
+
+use crate::sim::Sample;
+use crate::sim::blows::{BlowKind, Fighter};
+use shisen_gaze::behaviour::{ActionKind, EYES_ON_TARGET};
+
+/// A named angle of the VH for expectations.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+pub enum JointName {
+    /// Neck yaw.
+    NeckYaw,
+    /// Neck pitch.
+    NeckPitch,
+    /// Neck roll.
+    NeckRoll,
+    /// Left eye yaw.
+    LeftEyeYaw,
+    /// Left eye pitch.
+    LeftEyePitch,
+    /// Right eye yaw.
+    RightEyeYaw,
+    /// Right eye pitch.
+    RightEyePitch,
+}
+
+/// A predicate over a time window, checked by a headless run.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+pub enum Expect {
+    /// The gaze target is `target` for at least `share` of [from, to].
+    GazeShare {
+        /// Target name ("head", "left_glove", "point", ...).
+        target: String,
+        /// Window start, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        to: f64,
+        /// Minimum share, 0-1.
+        #[serde(deserialize_with = "shisen_gaze::util::check::unit_interval")]
+        at_least: f64,
+    },
+    /// The gaze target is `target` for at most `share` of [from, to].
+    GazeShareAtMost {
+        /// Target name.
+        target: String,
+        /// Window start, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        to: f64,
+        /// Maximum share, 0-1.
+        #[serde(deserialize_with = "shisen_gaze::util::check::unit_interval")]
+        at_most: f64,
+    },
+    /// The gaze target becomes `target` at some time in [from, to].
+    GazeReaches {
+        /// Target name.
+        target: String,
+        /// Window start, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        to: f64,
+    },
+    /// |angle| stays below `max_deg` over [from, to] (whole run if omitted).
+    AngleBelow {
+        /// Which angle.
+        joint: JointName,
+        /// Bound, degrees.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        max_deg: f64,
+        /// Window start, s.
+        #[serde(
+            default,
+            deserialize_with = "shisen_gaze::util::check::opt_non_negative",
+            skip_serializing_if = "Option::is_none"
+        )]
+        from: Option<f64>,
+        /// Window end, s.
+        #[serde(
+            default,
+            deserialize_with = "shisen_gaze::util::check::opt_non_negative",
+            skip_serializing_if = "Option::is_none"
+        )]
+        to: Option<f64>,
+    },
+    /// |angle| reaches at least `min_deg` at some time in [from, to].
+    AngleReaches {
+        /// Which angle.
+        joint: JointName,
+        /// Bound, degrees.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        min_deg: f64,
+        /// Window start, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        to: f64,
+    },
+    /// Before every punch the VH throws, its eyes have been on the attack
+    /// target (chosen top-down during the attack, line-of-sight error under
+    /// 2 deg) for at least `min_lead` seconds: the telegraph. Fails if no
+    /// punch is thrown.
+    Telegraph {
+        /// Minimum lead, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        min_lead: f64,
+    },
+    /// Both eyes' line-of-sight error to the gaze point stays below
+    /// `max_deg` over [from, to].
+    LineOfSight {
+        /// Bound, degrees.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        max_deg: f64,
+        /// Window start, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        to: f64,
+    },
+    /// The VH's action is `action` for at least `at_least` of [from, to].
+    ActionShare {
+        /// The action.
+        action: ActionKind,
+        /// Window start, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        to: f64,
+        /// Minimum share, 0-1.
+        #[serde(deserialize_with = "shisen_gaze::util::check::unit_interval")]
+        at_least: f64,
+    },
+    /// The VH blinks (lids more than half shut) at least `at_least` times
+    /// in [from, to].
+    Blinks {
+        /// Window start, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        to: f64,
+        /// Fewest blinks.
+        at_least: u32,
+    },
+    /// An opponent glove touches the VH's head in [from, to] (`hit: true`),
+    /// or never does (`hit: false`).
+    HeadHit {
+        /// Window start, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        to: f64,
+        /// Whether the head is hit.
+        hit: bool,
+    },
+    /// Blows of a kind (hits landed, punches blocked) thrown by one side
+    /// (see `sim::blows`) in [from, to]: at least `at_least`, and at most
+    /// `at_most` if given.
+    Blows {
+        /// `Hit` or `Block`.
+        kind: BlowKind,
+        /// Who threw them: `Vh` or `Opponent`.
+        by: Fighter,
+        /// Window start, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        to: f64,
+        /// Fewest blows.
+        #[serde(default)]
+        at_least: u32,
+        /// Most blows, if bounded.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        at_most: Option<u32>,
+    },
+    /// The head's direction in the world turns at least `at_least_deg`
+    /// away from where it pointed at the start of [from, to] (a hit rocks
+    /// the head).
+    HeadRotation {
+        /// Least peak rotation, deg (positive).
+        #[serde(deserialize_with = "shisen_gaze::util::check::positive")]
+        at_least_deg: f64,
+        /// Window start, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        to: f64,
+    },
+    /// Every state value stays finite for the whole run.
+    Finite,
+}
+
+/// The verdict on one expectation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Verdict {
+    /// What was expected, in words.
+    pub what: String,
+    /// What was measured, in words.
+    pub measured: String,
+    /// The measured number (share, degrees, seconds...).
+    pub value: f64,
+    /// Whether it holds.
+    pub pass: bool,
+}
+
+#[derive(Clone, Debug, Default)]
+struct Acc {
+    n: u64,
+    hits: u64,
+    max: f64,
+    min: Option<f64>,
+    first: Option<f64>,
+    bad: bool,
+    /// Telegraph: when the gaze last went onto the attack target.
+    since: Option<f64>,
+    punching: bool,
+    /// Blinks: whether the lids were more than half shut last tick.
+    shut: bool,
+    /// HeadRotation: the head's world direction at the window's start.
+    origin: Option<glam::DVec2>,
+}
+
+impl Expect {
+    /// The time window the expectation judges in a run of `duration`
+    /// seconds (`AngleBelow` defaults to the whole run), if it has one.
+    pub fn window(&self, duration: f64) -> Option<(f64, f64)> {
+        match self {
+            Expect::GazeShare { from, to, .. }
+            | Expect::GazeShareAtMost { from, to, .. }
+            | Expect::GazeReaches { from, to, .. }
+            | Expect::LineOfSight { from, to, .. }
+            | Expect::AngleReaches { from, to, .. }
+            | Expect::Blinks { from, to, .. }
+            | Expect::HeadHit { from, to, .. }
+            | Expect::Blows { from, to, .. }
+            | Expect::HeadRotation { from, to, .. }
+            | Expect::ActionShare { from, to, .. } => Some((*from, *to)),
+            Expect::AngleBelow { from, to, .. } => {
+                Some((from.unwrap_or(0.0), to.unwrap_or(duration)))
+            }
+            Expect::Finite | Expect::Telegraph { .. } => None,
+        }
+    }
+}
+
+/// Accumulates samples for every expectation of a scene.
+pub struct Checker {
+    expects: Vec<Expect>,
+    acc: Vec<Acc>,
+    duration: f64,
+}
+
+fn angle(s: &Sample, j: JointName) -> f64 {
+    match j {
+        JointName::NeckYaw => s.neck_actual.yaw,
+        JointName::NeckPitch => s.neck_actual.pitch,
+        JointName::NeckRoll => s.neck_actual.roll,
+        JointName::LeftEyeYaw => s.eye_actual[0].x,
+        JointName::LeftEyePitch => s.eye_actual[0].y,
+        JointName::RightEyeYaw => s.eye_actual[1].x,
+        JointName::RightEyePitch => s.eye_actual[1].y,
+    }
+}
+
+fn inside(t: f64, from: f64, to: f64) -> bool {
+    // Samples are stamped at the end of their tick; half-open on the left.
+    t > from + 1e-9 && t <= to + 1e-9
+}
+
+impl Checker {
+    /// A checker for these expectations over a run of `duration` seconds.
+    pub fn new(expects: &[Expect], duration: f64) -> Self {
+        Checker {
+            expects: expects.to_vec(),
+            acc: vec![Acc::default(); expects.len()],
+            duration,
+        }
+    }
+
+    /// Feed one sample.
+    pub fn push(&mut self, s: &Sample) {
+        for (e, a) in self.expects.iter().zip(&mut self.acc) {
+            match e {
+                Expect::GazeShare {
+                    target, from, to, ..
+                }
+                | Expect::GazeShareAtMost {
+                    target, from, to, ..
+                } => {
+                    if inside(s.t, *from, *to) {
+                        a.n += 1;
+                        a.hits += (s.gaze_target == *target) as u64;
+                    }
+                }
+                Expect::GazeReaches { target, from, to } => {
+                    if inside(s.t, *from, *to) && a.first.is_none() && s.gaze_target == *target {
+                        a.first = Some(s.t);
+                    }
+                }
+                Expect::AngleBelow {
+                    joint, from, to, ..
+                } => {
+                    if inside(s.t, from.unwrap_or(0.0), to.unwrap_or(self.duration)) {
+                        let v = angle(s, *joint).abs().to_degrees();
+                        a.n += 1;
+                        a.max = if v.is_nan() { f64::NAN } else { a.max.max(v) };
+                    }
+                }
+                Expect::AngleReaches {
+                    joint, from, to, ..
+                } => {
+                    if inside(s.t, *from, *to) {
+                        a.n += 1;
+                        a.max = a.max.max(angle(s, *joint).abs().to_degrees());
+                    }
+                }
+                Expect::Telegraph { .. } => {
+                    // The eyes are physically on the target (within EYES_ON_TARGET).
+                    let on_target = s.action == ActionKind::Attack
+                        && s.source == shisen_gaze::attention::Source::TopDown
+                        && s.los_error[0].max(s.los_error[1]) < EYES_ON_TARGET;
+                    if !on_target {
+                        a.since = None;
+                    } else if a.since.is_none() {
+                        a.since = Some(s.t);
+                    }
+                    if s.punching && !a.punching {
+                        a.n += 1;
+                        let lead = a.since.map_or(0.0, |t0| s.t - t0);
+                        a.min = Some(a.min.map_or(lead, |m: f64| m.min(lead)));
+                    }
+                    a.punching = s.punching;
+                }
+                Expect::LineOfSight { from, to, .. } => {
+                    if inside(s.t, *from, *to) {
+                        let v = s.los_error[0].max(s.los_error[1]).to_degrees();
+                        a.n += 1;
+                        a.max = if v.is_nan() { f64::NAN } else { a.max.max(v) };
+                    }
+                }
+                Expect::ActionShare {
+                    action, from, to, ..
+                } => {
+                    if inside(s.t, *from, *to) {
+                        a.n += 1;
+                        a.hits += (s.action == *action) as u64;
+                    }
+                }
+                Expect::Blinks { from, to, .. } => {
+                    let shut = s.blink > 0.5;
+                    if inside(s.t, *from, *to) && shut && !a.shut {
+                        a.hits += 1;
+                    }
+                    a.shut = shut;
+                }
+                Expect::HeadHit { from, to, .. } => {
+                    if inside(s.t, *from, *to) && s.head_hit && a.first.is_none() {
+                        a.first = Some(s.t);
+                    }
+                }
+                Expect::Blows {
+                    kind, by, from, to, ..
+                } => {
+                    if inside(s.t, *from, *to) {
+                        a.hits += s
+                            .blows
+                            .iter()
+                            .filter(|b| b.kind == *kind && b.by == *by)
+                            .count() as u64;
+                    }
+                }
+                Expect::HeadRotation { from, to, .. } => {
+                    if inside(s.t, *from, *to) {
+                        let o = *a.origin.get_or_insert(s.head_world);
+                        a.n += 1;
+                        a.max = a.max.max((s.head_world - o).length().to_degrees());
+                    }
+                }
+                Expect::Finite => {
+                    a.n += 1;
+                    a.bad |= !s.finite
+                        || !s.gaze_point.is_finite()
+                        || !s.eye_actual[0].is_finite()
+                        || !s.eye_actual[1].is_finite();
+                }
+            }
+        }
+    }
+
+    /// The verdicts.
+    pub fn verdicts(&self) -> Vec<Verdict> {
+        self.expects
+            .iter()
+            .zip(&self.acc)
+            .map(|(e, a)| judge(e, a, self.duration))
+            .collect()
+    }
+}
+
+fn share(a: &Acc) -> f64 {
+    if a.n == 0 {
+        0.0
+    } else {
+        a.hits as f64 / a.n as f64
+    }
+}
+
+fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
+    match e {
+        Expect::GazeShare {
+            target,
+            from,
+            to,
+            at_least,
+        } => {
+            let v = share(a);
+            Verdict {
+                what: format!(
+                    "gaze on `{target}` >= {:.0}% of [{from}, {to}] s",
+                    at_least * 100.0
+                ),
+                measured: format!("{:.1}%", v * 100.0),
+                value: v,
+                pass: a.n > 0 && v >= *at_least,
+            }
+        }
+        Expect::GazeShareAtMost {
+            target,
+            from,
+            to,
+            at_most,
+        } => {
+            let v = share(a);
+            Verdict {
+                what: format!(
+                    "gaze on `{target}` <= {:.0}% of [{from}, {to}] s",
+                    at_most * 100.0
+                ),
+                measured: format!("{:.1}%", v * 100.0),
+                value: v,
+                pass: a.n > 0 && v <= *at_most,
+            }
+        }
+        Expect::GazeReaches { target, from, to } => Verdict {
+            what: format!("gaze reaches `{target}` within [{from}, {to}] s"),
+            measured: a.first.map_or("never".into(), |t| {
+                format!("at {t:.3} s ({:.0} ms after {from})", (t - from) * 1e3)
+            }),
+            value: a.first.map_or(f64::INFINITY, |t| t - from),
+            pass: a.first.is_some(),
+        },
+        Expect::AngleBelow {
+            joint,
+            max_deg,
+            from,
+            to,
+        } => Verdict {
+            what: format!(
+                "|{joint:?}| < {max_deg} deg over [{}, {}] s",
+                from.unwrap_or(0.0),
+                to.unwrap_or(duration)
+            ),
+            measured: format!("max {:.2} deg", a.max),
+            value: a.max,
+            pass: a.n > 0 && a.max < *max_deg,
+        },
+        Expect::AngleReaches {
+            joint,
+            min_deg,
+            from,
+            to,
+        } => Verdict {
+            what: format!("|{joint:?}| reaches {min_deg} deg within [{from}, {to}] s"),
+            measured: format!("max {:.2} deg", a.max),
+            value: a.max,
+            pass: a.n > 0 && a.max >= *min_deg,
+        },
+        Expect::Telegraph { min_lead } => Verdict {
+            what: format!(
+                "eyes on the attack target (< {} deg) >= {:.0} ms before every VH punch",
+                EYES_ON_TARGET.to_degrees(),
+                min_lead * 1e3
+            ),
+            measured: match a.min {
+                Some(m) => format!("{} punches, shortest lead {:.0} ms", a.n, m * 1e3),
+                None => "no punch thrown".into(),
+            },
+            value: a.min.unwrap_or(0.0),
+            pass: a.min.is_some_and(|m| m >= *min_lead),
+        },
+        Expect::LineOfSight { max_deg, from, to } => Verdict {
+            what: format!("line-of-sight error < {max_deg} deg over [{from}, {to}] s"),
+            measured: format!("max {:.3} deg", a.max),
+            value: a.max,
+            pass: a.n > 0 && a.max < *max_deg,
+        },
+        Expect::ActionShare {
+            action,
+            from,
+            to,
+            at_least,
+        } => {
+            let v = share(a);
+            Verdict {
+                what: format!(
+                    "action {action:?} >= {:.0}% of [{from}, {to}] s",
+                    at_least * 100.0
+                ),
+                measured: format!("{:.1}%", v * 100.0),
+                value: v,
+                pass: a.n > 0 && v >= *at_least,
+            }
+        }
+        Expect::Blinks { from, to, at_least } => Verdict {
+            what: format!("at least {at_least} blinks in [{from}, {to}] s"),
+            measured: format!("{} blinks", a.hits),
+            value: a.hits as f64,
+            pass: a.hits >= u64::from(*at_least),
+        },
+        Expect::HeadHit { from, to, hit } => Verdict {
+            what: format!(
+                "the head is {}hit in [{from}, {to}] s",
+                if *hit { "" } else { "not " }
+            ),
+            measured: a
+                .first
+                .map_or("no hit".into(), |t| format!("hit at {t:.3} s")),
+            value: a.first.map_or(0.0, |_| 1.0),
+            pass: a.first.is_some() == *hit,
+        },
+        Expect::Blows {
+            kind,
+            by,
+            from,
+            to,
+            at_least,
+            at_most,
+        } => Verdict {
+            what: format!(
+                "{kind:?} by {by:?}: at least {at_least}{} in [{from}, {to}] s",
+                at_most.map_or(String::new(), |m| format!(", at most {m}"))
+            ),
+            measured: format!("{}", a.hits),
+            value: a.hits as f64,
+            pass: a.hits >= u64::from(*at_least) && at_most.is_none_or(|m| a.hits <= u64::from(m)),
+        },
+        Expect::HeadRotation {
+            at_least_deg,
+            from,
+            to,
+        } => Verdict {
+            what: format!("the head turns >= {at_least_deg} deg in [{from}, {to}] s"),
+            measured: format!("peak {:.2} deg", a.max),
+            value: a.max,
+            pass: a.n > 0 && a.max >= *at_least_deg,
+        },
+        Expect::Finite => Verdict {
+            what: "state finite throughout (no NaN)".into(),
+            measured: if a.bad {
+                "non-finite state".into()
+            } else {
+                format!("{} ticks finite", a.n)
+            },
+            value: if a.bad { 1.0 } else { 0.0 },
+            pass: !a.bad && a.n > 0,
+        },
+    }
+}

@@ -1,0 +1,566 @@
+//! One simulation: the world plus the VH's brain, stepped at a fixed rate
+//! in simulation time. [`Sim::step`] runs the pipeline of gaze.md 1 as
+//! named stages: timeline -> sense (vision) -> decide (behaviour) ->
+//! attend (attention) -> move the gaze (oculomotor) -> face -> arms ->
+//! actuate and integrate (PD joints, physics) -> record a [`Sample`].
+//!
+//! The static description lives in a [`Model`]; `Sim` holds only what
+//! evolves.
+
+pub mod blows;
+pub mod expect;
+pub mod model;
+mod sample;
+pub mod timeline;
+pub mod track;
+
+use glam::{DVec2, DVec3, Quat, Vec3};
+use rand::SeedableRng;
+use rand::rngs::StdRng;
+
+use crate::physics::body::{Seg, Shape, arm_ik};
+use crate::physics::control::JointTarget;
+use crate::physics::world::{PropSpec, World};
+use blows::{Blow, Blows, Tally};
+pub use model::{BodySpec, DT, Model, Params, Profile, PropShape};
+pub use sample::Sample;
+use shisen_face::FaceState;
+use shisen_gaze::attention::{Attention, GazeChoice, Source};
+use shisen_gaze::behaviour::{ActionKind, Behaviour, EYES_ON_TARGET, OpponentView, TopDown};
+use shisen_gaze::oculomotor::head::Amount;
+use shisen_gaze::oculomotor::{GazeInput, GazeOutput, Oculomotor};
+use shisen_gaze::target::{Spot, TargetId};
+use shisen_gaze::util::delay::DelayLine;
+use shisen_gaze::util::math::{JointAngles, angle_between, yaw_pitch_of};
+use shisen_gaze::vision::BodyId;
+use shisen_gaze::vision::{Seen, see};
+use timeline::{Event, Timeline};
+use track::Track;
+
+/// Largest reference angular speed of an arm joint, rad/s (elbow extension
+/// in a punch peaks around 20-40 rad/s).
+const ARM_MAX_RATE: f32 = 40.0;
+
+/// Angular speed (rad/s) of a VH segment taken as a physics explosion.
+pub const BLOW_UP_ANGVEL: f32 = 200.0;
+
+/// The VH counts as sparring (for its blink rate) until this long after
+/// it last guarded or attacked, s: longer than the gaps between actions in
+/// a bout (attacks come every few seconds), shorter than a pause.
+const SPARRING_HOLD: f64 = 5.0;
+
+/// Independent random streams, one per consumer, all derived from the
+/// scene seed, so adding draws to one never shifts another.
+struct Streams {
+    behaviour: StdRng,
+    oculomotor: StdRng,
+    face: StdRng,
+}
+
+impl Streams {
+    fn new(seed: u64) -> Self {
+        let derive = |k: u64| StdRng::seed_from_u64(seed ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+        Streams {
+            behaviour: derive(1),
+            oculomotor: derive(2),
+            face: derive(3),
+        }
+    }
+}
+
+/// A running simulation: the evolving state of one [`Model`].
+pub struct Sim {
+    model: Model,
+    /// The physics world.
+    pub world: World,
+    tick: u64,
+    timeline: Timeline,
+    /// Attention state.
+    pub attention: Attention,
+    /// Action planner state.
+    pub behaviour: Behaviour,
+    /// Eye and head control state.
+    pub oculomotor: Oculomotor,
+    /// The face's evolving state (expression, blinks).
+    pub face_state: shisen_face::FaceState,
+    /// What the eyes see this tick.
+    sight: Vec<Seen>,
+    /// What the stages act on: the sight of `vision.latency` ago.
+    seen: Vec<Seen>,
+    percept: DelayLine<Vec<Seen>>,
+    /// When the VH last guarded or attacked, s.
+    last_action: f64,
+    /// Whether the VH is sparring (guarded or attacked within
+    /// [`SPARRING_HOLD`]): decided each tick, shown by the face.
+    sparring: bool,
+    targets: Vec<JointTarget>,
+    rng: Streams,
+    names: Vec<String>,
+    /// The gaze target both eyes were on (line of sight within
+    /// [`EYES_ON_TARGET`]) at the end of the last tick.
+    fixated: Option<TargetId>,
+    /// Times the VH was reset after a physics explosion.
+    pub resets: u32,
+    /// Hits and blocks both ways.
+    blows: Blows,
+    last: Option<Sample>,
+}
+
+/// What the move-the-gaze stage produced, for the stages after it.
+struct GazeStep {
+    choice: GazeChoice,
+    out: GazeOutput,
+    eye_angles: [DVec2; 2],
+}
+
+impl Sim {
+    /// Start a simulation of `model` with a timeline (sorted here; events
+    /// at equal times keep their order).
+    pub fn new(model: Model, timeline: &[Event]) -> Self {
+        let mut world = World::new(model.plan.clone(), model.dt);
+        let blows = Blows::new(&world);
+        let mut scripted: Vec<(BodyId, DVec3)> = world
+            .parts()
+            .iter()
+            .map(|&b| (b, world.position(b).as_dvec3()))
+            .collect();
+        for b in &model.props {
+            let shape = match b.shape {
+                PropShape::Ball(r) => Shape::Ball { radius: r as f32 },
+                PropShape::Box(h) => Shape::Cuboid { half: h.as_vec3() },
+            };
+            let idx = world.add_prop(&PropSpec {
+                name: b.name.clone(),
+                shape,
+                position: b.position.as_vec3(),
+                velocity: b.velocity.as_vec3(),
+                angvel: b.angular_velocity.as_vec3(),
+                mass: b.mass as f32,
+                kinematic: b.kinematic,
+                gravity: b.gravity,
+            });
+            if b.kinematic {
+                scripted.push((idx, b.position));
+            }
+        }
+        let names: Vec<String> = world.bodies.iter().map(|b| b.name.clone()).collect();
+        let mut targets = vec![JointTarget::default(); model.plan.segments.len()];
+        let behaviour = Behaviour::new();
+        for (s, q) in arm_rotations(behaviour.glove_targets(0.0)) {
+            targets[s.index()].rotation = q;
+        }
+        let mut rng = Streams::new(model.seed);
+        Sim {
+            face_state: FaceState::default(),
+            oculomotor: Oculomotor::new(&model.params.oculomotor, &mut rng.oculomotor),
+            rng,
+            model,
+            world,
+            tick: 0,
+            timeline: Timeline::new(timeline, &scripted),
+            attention: Attention::new(names.clone()),
+            behaviour,
+            sight: Vec::new(),
+            seen: Vec::new(),
+            percept: DelayLine::new(),
+            last_action: f64::NEG_INFINITY,
+            sparring: false,
+            targets,
+            names,
+            fixated: None,
+            resets: 0,
+            blows,
+            last: None,
+        }
+    }
+
+    /// The static description being simulated.
+    pub fn model(&self) -> &Model {
+        &self.model
+    }
+
+    /// The parameters in force.
+    pub fn params(&self) -> &Params {
+        &self.model.params
+    }
+
+    /// Change parameters while running: the one path for live edits (app
+    /// sliders, tuning). Every stage reads the new values from the next
+    /// tick on; nothing is derived from them at construction, so nothing
+    /// goes stale.
+    pub fn edit_params(&mut self, edit: impl FnOnce(&mut Params)) {
+        edit(&mut self.model.params);
+    }
+
+    /// Simulation time now, s.
+    pub fn time(&self) -> f64 {
+        self.tick as f64 * self.model.dt
+    }
+
+    /// Hits landed and punches blocked so far, both ways.
+    pub fn tally(&self) -> Tally {
+        self.blows.tally
+    }
+
+    /// The last recorded sample.
+    pub fn last(&self) -> Option<&Sample> {
+        self.last.as_ref()
+    }
+
+    /// Bodies in view as the VH's stages perceived them in the last tick
+    /// (the sight of `vision.latency` ago).
+    pub fn seen(&self) -> &[Seen] {
+        &self.seen
+    }
+
+    /// The kinematic track of a body, if it has one.
+    pub fn track_mut(&mut self, body: BodyId) -> Option<&mut Track> {
+        self.timeline.track_mut(body)
+    }
+
+    /// Recover from a physics explosion: the VH back at rest in its rest
+    /// pose, its controllers restarted; the opponent, props and the scene's
+    /// timeline carry on. Counted in [`Sim::resets`].
+    pub fn reset_vh(&mut self, why: &str) {
+        if self.resets.is_power_of_two() || self.resets == 0 {
+            tracing::warn!(
+                t = self.time(),
+                resets = self.resets + 1,
+                "physics blew up ({why}): VH reset to rest"
+            );
+        }
+        self.world.reset_vh();
+        self.oculomotor = Oculomotor::new(&self.model.params.oculomotor, &mut self.rng.oculomotor);
+        self.behaviour = Behaviour::new();
+        for t in &mut self.targets {
+            *t = JointTarget::default();
+        }
+        self.resets += 1;
+    }
+
+    /// Schedule a timeline event while running (live input). It runs in
+    /// the tick at its time, after the scene's own events of that time,
+    /// exactly as if it had been appended to the scene's timeline, so a
+    /// recorded session replays tick for tick. Events in the past run in
+    /// the next tick.
+    pub fn push_event(&mut self, ev: Event) {
+        self.timeline.push(ev);
+    }
+
+    /// Advance one tick and return its sample.
+    pub fn step(&mut self) -> &Sample {
+        let t = self.time();
+        self.play_timeline(t);
+        self.sense();
+        let top_down = self.decide(t);
+        let choice = self.attend(&top_down, t);
+        let gaze = self.move_gaze(choice, t);
+        self.animate_face(&gaze);
+        self.plan_arms(t);
+        let reset = self.actuate_and_integrate();
+        let blows = self.resolve_contacts();
+        self.record(&gaze, reset, blows)
+    }
+
+    /// Timeline: the scene's events due now (and live input's), then the
+    /// scripted bodies driven along their tracks.
+    fn play_timeline(&mut self, t: f64) {
+        self.timeline
+            .run(t, &self.world, &self.model.face, &mut self.face_state);
+        self.timeline.drive(&mut self.world, t, self.model.dt);
+    }
+
+    /// Sense: the bodies in view through the open eyes, with saliency (M1);
+    /// the later stages get them `vision.latency` late.
+    fn sense(&mut self) {
+        let open = self.timeline.occluded.map(|o| !o);
+        let vision = &self.model.params.vision;
+        see(&self.world, vision, open, &mut self.sight);
+        if vision.latency > 0.0 {
+            self.seen = self
+                .percept
+                .push(self.sight.clone(), vision.latency, self.model.dt);
+        } else {
+            std::mem::swap(&mut self.seen, &mut self.sight);
+        }
+    }
+
+    /// Decide: the action planner's top-down request and glove plans, and
+    /// whether the VH is sparring.
+    fn decide(&mut self, t: f64) -> TopDown {
+        let head_c = self.world.rb(Seg::Head).translation().as_dvec3();
+        let torso_c = self.world.rb(Seg::Torso).translation().as_dvec3();
+        let view = OpponentView {
+            seen: &self.seen,
+            names: &self.names,
+            eyes_on: self.fixated,
+            parts: self.world.parts(),
+            vh_points: [head_c, torso_c, (head_c + torso_c) / 2.0],
+        };
+        let p = &self.model.params;
+        let top_down = self.behaviour.step(
+            &p.behaviour,
+            &p.personality,
+            &view,
+            t,
+            self.model.dt,
+            &mut self.rng.behaviour,
+        );
+        if self.behaviour.action() != ActionKind::Idle {
+            self.last_action = t;
+        }
+        self.sparring = t - self.last_action < SPARRING_HOLD;
+        top_down
+    }
+
+    /// Attend: attention's choice, or the scene's override while in force.
+    /// Attention always runs (its scores and habituation stay live).
+    fn attend(&mut self, top_down: &TopDown, t: f64) -> GazeChoice {
+        let world = &self.world;
+        let body_pos = |b: BodyId| world.position(b).as_dvec3();
+        let p = &self.model.params;
+        let chosen = self.attention.step(
+            &p.attention,
+            &self.seen,
+            top_down,
+            body_pos,
+            t,
+            self.model.dt,
+        );
+        match &self.timeline.look_at {
+            Some(o) if t < o.until => {
+                let c = GazeChoice {
+                    name: o
+                        .body
+                        .map_or("point".into(), |b| self.names[b.index()].clone()),
+                    body: o.body,
+                    spot: Spot::Centre,
+                    point: o.body.map_or(o.point, body_pos),
+                    amount: o.amount.unwrap_or(p.personality.a2),
+                    source: Source::Override,
+                };
+                self.attention.force(c.clone(), t);
+                c
+            }
+            _ => chosen,
+        }
+    }
+
+    /// Move the gaze: the oculomotor's eye and neck commands, set as the
+    /// eye and neck joint targets.
+    fn move_gaze(&mut self, choice: GazeChoice, t: f64) -> GazeStep {
+        let dt = self.model.dt;
+        let p = &self.model.params;
+        let head = self.world.rb(Seg::Head);
+        let input = GazeInput {
+            point: choice.point,
+            target: choice.id(),
+            amount: Amount {
+                value: choice.amount,
+                least: p.personality.a1,
+                most: p.personality.a2,
+            },
+            top_down: choice.source != Source::BottomUp,
+            head_pos: head.translation().as_dvec3(),
+            head_rot: head.rotation().as_dquat(),
+            head_angvel: head.angvel().as_dvec3(),
+            torso_rot: self.world.rb(Seg::Torso).rotation().as_dquat(),
+            eye_pos: Seg::EYES.map(|e| self.world.rb(e).translation().as_dvec3()),
+            eye_angles: Seg::EYES.map(|e| {
+                let a = self.world.joint_angles(e);
+                DVec2::new(a.yaw, a.pitch)
+            }),
+            neck_angles: self.world.joint_angles(Seg::Head),
+            visible: self.timeline.occluded.map(|o| !o),
+            style: self
+                .timeline
+                .look_at
+                .as_ref()
+                .filter(|o| t < o.until)
+                .and_then(|o| o.style)
+                .unwrap_or(p.oculomotor.gaze_shift),
+            neck_override: self
+                .timeline
+                .shake
+                .filter(|s| t < s.until)
+                .map(|s| s.command(t + dt)),
+        };
+        let out = self
+            .oculomotor
+            .step(&p.oculomotor, &input, t, dt, &mut self.rng.oculomotor);
+        for (s, e) in Seg::EYES.into_iter().zip(out.eyes) {
+            self.targets[s.index()] = JointTarget::yaw_pitch(e.angles, e.rates, e.accel);
+        }
+        let n = out.neck;
+        self.targets[Seg::Head.index()] = JointTarget::yaw_pitch(n.angles, n.rates, n.accel);
+        GazeStep {
+            choice,
+            out,
+            eye_angles: input.eye_angles,
+        }
+    }
+
+    /// Face: lids follow the eyes' pitch; a large gaze shift may blink;
+    /// sparring changes the blink rate.
+    fn animate_face(&mut self, gaze: &GazeStep) {
+        let face = &self.model.face;
+        if let Some(amplitude) = self.oculomotor.saccade_started() {
+            self.face_state
+                .gaze_shift(face, amplitude.to_degrees(), &mut self.rng.face);
+        }
+        self.face_state.eye_pitch = gaze.eye_angles.map(|a| a.y as f32);
+        self.face_state.engaged = self.sparring;
+        self.face_state
+            .step(face, self.model.dt, &mut self.rng.face);
+    }
+
+    /// Arms: inverse kinematics of the planned glove positions; the
+    /// velocity reference comes from differencing the IK solution.
+    fn plan_arms(&mut self, t: f64) {
+        let dt = self.model.dt;
+        // The torso's lunge moves the shoulders: the arms' inverse
+        // kinematics works from where the torso will be.
+        let lunge = self.behaviour.torso_offset(t + dt);
+        self.world.set_root_offset(lunge.as_vec3());
+        let gloves = self.behaviour.glove_targets(t + dt).map(|g| g - lunge);
+        for (s, q) in arm_rotations(gloves) {
+            let k = s.index();
+            let prev = self.targets[k].rotation;
+            let mut d = q * prev.inverse();
+            if d.w < 0.0 {
+                d = -d;
+            }
+            // Capped at a fast human limb's rate: where the IK solution
+            // jumps (a new reach, a swivel flip) the difference is not a
+            // velocity, and a huge reference would fling the arm.
+            let velocity = (d.to_scaled_axis() / dt as f32).clamp_length_max(ARM_MAX_RATE);
+            self.targets[k] = JointTarget {
+                rotation: q,
+                velocity,
+                acceleration: Vec3::ZERO,
+            };
+        }
+    }
+
+    /// Actuate and integrate: PD torques toward the targets, one physics
+    /// step, and recovery if it blew up. Returns whether the VH was reset.
+    fn actuate_and_integrate(&mut self) -> bool {
+        self.world
+            .apply_control(&self.model.params.gains, &self.targets);
+        self.world.step();
+        self.tick += 1;
+        let blow_up = self.world.blow_up(BLOW_UP_ANGVEL);
+        let reset = blow_up.is_some();
+        if let Some(why) = blow_up {
+            self.reset_vh(&why);
+        }
+        reset
+    }
+
+    /// Resolve contacts: the blows this step's contacts decided, and a
+    /// scripted glove stopped by what it hit comes back from there.
+    fn resolve_contacts(&mut self) -> Vec<Blow> {
+        let t = self.time();
+        let blows = self.blows.step(&self.world, t);
+        for (g, on) in self.blows.touching().to_vec() {
+            let (at, v) = (
+                self.world.position(g).as_dvec3(),
+                self.world.velocity(g).as_dvec3(),
+            );
+            if self.timeline.recoil(g, t, at, v, self.model.dt) {
+                self.blows.opponent_punch_stopped(on);
+            }
+        }
+        blows
+    }
+
+    /// Record: measure the tick into a [`Sample`], and note which target
+    /// the eyes are on for the next tick's planner.
+    fn record(&mut self, gaze: &GazeStep, reset: bool, blows: Vec<Blow>) -> &Sample {
+        let neck_target = JointAngles {
+            yaw: gaze.out.neck.angles.x,
+            pitch: gaze.out.neck.angles.y,
+            roll: 0.0,
+        };
+        let mut sample = self.sample(&gaze.choice, &gaze.out.eyes.map(|e| e.angles), neck_target);
+        sample.reset = reset;
+        sample.blows = blows;
+        self.fixated = (sample.los_error[0].max(sample.los_error[1]) < EYES_ON_TARGET)
+            .then(|| gaze.choice.id());
+        self.last = Some(sample);
+        self.last.as_ref().expect("just set")
+    }
+
+    /// Measure the tick's outcome (part of the record stage).
+    fn sample(
+        &self,
+        choice: &GazeChoice,
+        eye_target: &[DVec2; 2],
+        neck_target: JointAngles,
+    ) -> Sample {
+        let w = &self.world;
+        let mut los_error = [0.0; 2];
+        let mut gaze_error = [DVec2::ZERO; 2];
+        let mut eye_actual = [DVec2::ZERO; 2];
+        for (k, s) in Seg::EYES.into_iter().enumerate() {
+            let rb = w.rb(s);
+            let los = (*rb.rotation() * Vec3::Z).as_dvec3();
+            let to = (choice.point - rb.translation().as_dvec3()).normalize_or(DVec3::Z);
+            los_error[k] = angle_between(los, to);
+            let (ly, lp) = yaw_pitch_of(los);
+            let (ty, tp) = yaw_pitch_of(to);
+            gaze_error[k] = DVec2::new(ly - ty, lp - tp);
+            let a = w.joint_angles(s);
+            eye_actual[k] = DVec2::new(a.yaw, a.pitch);
+        }
+        let head_fwd = (*w.rb(Seg::Head).rotation() * Vec3::Z).as_dvec3();
+        let (hy, hp) = yaw_pitch_of(head_fwd);
+        let mut top: Vec<(String, f64)> = self
+            .seen
+            .iter()
+            .map(|s| {
+                let i = s.body.index();
+                (self.names[i].clone(), self.attention.scores[i])
+            })
+            .collect();
+        top.sort_by(|a, b| b.1.total_cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
+        top.truncate(3);
+        Sample {
+            t: self.time(),
+            action: self.behaviour.action(),
+            action_target: self.behaviour.target_name(&self.names).map(String::from),
+            gaze_target: choice.name.clone(),
+            gaze_point: choice.point,
+            source: choice.source,
+            amount: choice.amount,
+            eye_target: *eye_target,
+            eye_actual,
+            los_error,
+            gaze_error,
+            neck_target,
+            neck_actual: w.joint_angles(Seg::Head),
+            head_world: DVec2::new(hy, hp),
+            top_saliency: top,
+            finite: w.is_finite(),
+            punching: self.behaviour.punching(),
+            head_hit: self.blows.head_contact(),
+            emotion: self.face_state.emotion,
+            blink: self.face_state.blink.closure(&self.model.face.params.blink),
+            reset: false,
+            blows: Vec::new(),
+        }
+    }
+}
+
+/// Shoulder and elbow joint rotations (segment, rotation) that put the
+/// gloves at the planned positions (inverse kinematics, left then right).
+fn arm_rotations(gloves: [DVec3; 2]) -> [(Seg, Quat); 4] {
+    let (ls, le) = arm_ik(0, gloves[0]);
+    let (rs, re) = arm_ik(1, gloves[1]);
+    [
+        (Seg::UpperArmL, ls),
+        (Seg::ForearmL, le),
+        (Seg::UpperArmR, rs),
+        (Seg::ForearmR, re),
+    ]
+}

@@ -1,0 +1,410 @@
+//! Studies: one base scene run many times with some of its fields varied
+//! (personalities x opponents x seeds...), one CSV row per run.
+//!
+//! A study file (RON) names the base scene (relative to the study file),
+//! the fields to vary, each by a list of values or an evenly spaced range,
+//! and the seeds:
+//!
+//! ```ron
+//! Study(
+//!     scene: "../scenes/wave.ron",
+//!     vary: [
+//!         (field: "vh.personality.a_face", values: [1.0, 1.5, 2.0]),
+//!         (field: "vh.behaviour.attack_rate", range: (from: 0.2, to: 1.0, steps: 5)),
+//!     ],
+//!     seeds: Range(from: 1, to: 10),
+//! )
+//! ```
+//!
+//! The runs are the product of every field's values and the seeds, in
+//! that order (the first field varies slowest, the seed fastest); run `k`
+//! is the `k`-th of them, so a [`Shard`] takes a fixed share. A field is a
+//! dotted path into the scene as its file writes it (`timeline[2].at`
+//! works too); each run's scene is validated like a file, so a value out
+//! of range or an expectation window past a varied `duration` is an
+//! error naming the run. Results go to a resumable [`ResultsFile`]: run,
+//! seed, the varied values, whether every expectation held, VH resets,
+//! saccades, head movements, then each expectation's measured value and
+//! verdict.
+
+use std::path::{Path, PathBuf};
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+
+use crate::scene::{LoadedScene, Scene};
+use crate::tools::table::{ResultsFile, Shard, settings_line};
+use crate::tools::{headless, parallel};
+use shisen_gaze::util::ron::{LoadError, parse_ron, read_text};
+
+/// A study file.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Study {
+    /// The base scene, relative to the study file.
+    pub scene: PathBuf,
+    /// The fields to vary.
+    #[serde(default)]
+    pub vary: Vec<Vary>,
+    /// The seeds (default: the scene's own).
+    #[serde(default)]
+    pub seeds: Option<Seeds>,
+}
+
+/// One varied field.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Vary {
+    /// Dotted path of the field in the scene (`vh.personality.a_face`).
+    pub field: String,
+    /// Its values...
+    #[serde(default)]
+    pub values: Vec<f64>,
+    /// ... or an evenly spaced range.
+    #[serde(default)]
+    pub range: Option<Range>,
+}
+
+/// `steps` evenly spaced values from `from` to `to` inclusive.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Range {
+    /// First value.
+    #[serde(deserialize_with = "shisen_gaze::util::check::finite")]
+    pub from: f64,
+    /// Last value.
+    #[serde(deserialize_with = "shisen_gaze::util::check::finite")]
+    pub to: f64,
+    /// Number of values (at least 2).
+    pub steps: usize,
+}
+
+/// The seeds of a study.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+pub enum Seeds {
+    /// These seeds.
+    List(Vec<u64>),
+    /// Every seed from `from` to `to` inclusive.
+    Range {
+        /// First seed.
+        from: u64,
+        /// Last seed.
+        to: u64,
+    },
+}
+
+/// Most runs a study may expand to (a typo such as `steps: 10000` in two
+/// fields should not start a hundred-million-run job).
+pub const MAX_RUNS: usize = 1_000_000;
+
+/// A study, loaded: its base scene and its runs.
+pub struct LoadedStudy {
+    /// The study file.
+    pub file: PathBuf,
+    /// The base scene.
+    pub base: LoadedScene,
+    /// The varied fields.
+    pub fields: Vec<String>,
+    /// Each run's values of the fields, and its seed.
+    pub runs: Vec<(Vec<f64>, u64)>,
+    /// A fingerprint of the study and scene text (a results file made from
+    /// other text is not resumed).
+    pub fingerprint: u64,
+}
+
+impl LoadedStudy {
+    /// Load a study file and its base scene, and expand its runs.
+    pub fn load(path: &Path) -> Result<LoadedStudy, LoadError> {
+        let text = read_text(path)?;
+        let study: Study = parse_ron(&text, path)?;
+        let dir = path.parent().unwrap_or(Path::new("."));
+        let scene_path = dir.join(&study.scene);
+        let base = LoadedScene::load(&scene_path)?;
+        let scene_text = read_text(&scene_path)?;
+        let invalid = |field: String, message: String| {
+            let (line, col) = shisen_gaze::util::ron::line_of(&text, "vary");
+            LoadError::Invalid {
+                file: path.display().to_string(),
+                line,
+                col,
+                field,
+                message,
+            }
+        };
+        let template = scene_value(&base.scene);
+        let mut axes = Vec::new();
+        for (i, v) in study.vary.iter().enumerate() {
+            let values = match (&v.range, v.values.is_empty()) {
+                (Some(r), true) => {
+                    if r.steps < 2 {
+                        return Err(invalid(
+                            format!("vary[{i}].range.steps"),
+                            format!("must be at least 2, got {}", r.steps),
+                        ));
+                    }
+                    (0..r.steps)
+                        .map(|k| r.from + (r.to - r.from) * k as f64 / (r.steps - 1) as f64)
+                        .collect()
+                }
+                (None, false) => v.values.clone(),
+                _ => {
+                    return Err(invalid(
+                        format!("vary[{i}]"),
+                        "give either `values` or `range`".into(),
+                    ));
+                }
+            };
+            if let Some(bad) = values.iter().find(|x| !x.is_finite()) {
+                return Err(invalid(
+                    format!("vary[{i}].values"),
+                    format!("must be finite, got {bad}"),
+                ));
+            }
+            if v.field.starts_with("vh.face") || v.field == "seed" {
+                return Err(invalid(
+                    format!("vary[{i}].field"),
+                    format!(
+                        "`{}` cannot be varied (seeds go in `seeds`; the face is shared)",
+                        v.field
+                    ),
+                ));
+            }
+            let mut probe = template.clone();
+            if let Err(m) = set_field(&mut probe, &v.field, values[0]) {
+                return Err(invalid(format!("vary[{i}].field"), m));
+            }
+            axes.push(values);
+        }
+        let seeds = match &study.seeds {
+            None => vec![base.scene.seed],
+            Some(Seeds::List(s)) if !s.is_empty() => s.clone(),
+            Some(Seeds::Range { from, to }) if from <= to => (*from..=*to).collect(),
+            Some(_) => return Err(invalid("seeds".into(), "no seeds".into())),
+        };
+        let total = axes
+            .iter()
+            .map(Vec::len)
+            .chain([seeds.len()])
+            .try_fold(1usize, |n, k| n.checked_mul(k))
+            .filter(|&n| n <= MAX_RUNS);
+        let Some(total) = total else {
+            return Err(invalid(
+                "vary".into(),
+                format!("expands to more than {MAX_RUNS} runs"),
+            ));
+        };
+        let mut runs = Vec::with_capacity(total);
+        for k in 0..total {
+            let mut rest = k;
+            let seed = seeds[rest % seeds.len()];
+            rest /= seeds.len();
+            let mut values = vec![0.0; axes.len()];
+            for (a, axis) in axes.iter().enumerate().rev() {
+                values[a] = axis[rest % axis.len()];
+                rest /= axis.len();
+            }
+            runs.push((values, seed));
+        }
+        Ok(LoadedStudy {
+            file: path.to_path_buf(),
+            fields: study.vary.iter().map(|v| v.field.clone()).collect(),
+            runs,
+            fingerprint: fnv(&[text.as_bytes(), scene_text.as_bytes()]),
+            base,
+        })
+    }
+
+    /// The settings line of this study's results file.
+    pub fn settings(&self, shard: Shard) -> String {
+        let name = self
+            .file
+            .file_name()
+            .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+        settings_line(
+            "study",
+            &[
+                ("file", name),
+                ("runs", self.runs.len().to_string()),
+                ("text", format!("{:016x}", self.fingerprint)),
+            ],
+            shard,
+        )
+    }
+
+    /// The CSV header of this study's results.
+    pub fn header(&self) -> String {
+        let mut h = String::from("run,seed");
+        for f in &self.fields {
+            h.push(',');
+            h.push_str(&f.replace(',', ";"));
+        }
+        h.push_str(",passed,resets,saccades,head_moves");
+        for i in 0..self.base.scene.expect.len() {
+            h.push_str(&format!(",expect{i},expect{i}_pass"));
+        }
+        h
+    }
+
+    /// The scene of run `k`, validated like a file.
+    pub fn scene(&self, k: usize) -> Result<LoadedScene, String> {
+        let (values, seed) = &self.runs[k];
+        let mut base = self.base.scene.clone();
+        // Vary gains through the scene's inline gains.
+        base.gains = Some(self.base.gains.clone());
+        base.gains_file = None;
+        let mut v = scene_value(&base);
+        for (f, x) in self.fields.iter().zip(values) {
+            set_field(&mut v, f, *x)?;
+        }
+        let mut scene: Scene = serde_json::from_value(v).map_err(|e| format!("run {k}: {e}"))?;
+        scene.seed = *seed;
+        let label = format!("{} run {k}", self.file.display());
+        let scene = Scene::parse(&scene.to_ron(), Path::new(&label)).map_err(|e| e.to_string())?;
+        Ok(LoadedScene {
+            gains: scene
+                .gains
+                .clone()
+                .unwrap_or_else(|| self.base.gains.clone()),
+            scene,
+            face: self.base.face.clone(),
+            source: label,
+        })
+    }
+
+    /// Run this `shard` of the study on `jobs` threads into `results`
+    /// (runs already there are skipped), with a progress bar. Returns the
+    /// number of runs made now.
+    pub fn run(&self, shard: Shard, jobs: usize, results: &ResultsFile) -> anyhow::Result<usize> {
+        let todo: Vec<usize> = (0..self.runs.len())
+            .filter(|&k| shard.contains(k) && !results.has(k))
+            .collect();
+        // Every run's scene is checked before any simulation starts.
+        let scenes: Vec<LoadedScene> = todo
+            .iter()
+            .map(|&k| self.scene(k))
+            .collect::<Result<_, _>>()
+            .map_err(anyhow::Error::msg)?;
+        let bar = parallel::bar(todo.len() as u64, "runs");
+        parallel::pool(jobs).install(|| {
+            todo.par_iter().zip(&scenes).try_for_each(|(&k, scene)| {
+                let r = headless::run(scene, None, None, 1)?;
+                let (values, seed) = &self.runs[k];
+                let mut row = seed.to_string();
+                for x in values {
+                    row.push_str(&format!(",{x}"));
+                }
+                row.push_str(&format!(
+                    ",{},{},{},{}",
+                    u8::from(r.passed()),
+                    r.resets,
+                    r.saccades,
+                    r.head_moves
+                ));
+                for v in &r.verdicts {
+                    row.push_str(&format!(",{},{}", v.value, u8::from(v.pass)));
+                }
+                results.push(k, &row)?;
+                bar.inc(1);
+                anyhow::Ok(())
+            })
+        })?;
+        bar.finish_and_clear();
+        Ok(todo.len())
+    }
+}
+
+/// The scene as a JSON value (the field paths of its file).
+fn scene_value(scene: &Scene) -> Value {
+    serde_json::to_value(scene).expect("scenes serialise")
+}
+
+/// Set the number at dotted `path` (`a.b[2].c`) of `v`, keeping integers
+/// integral. The field must exist and hold a number.
+fn set_field(v: &mut Value, path: &str, x: f64) -> Result<(), String> {
+    let mut cur = v;
+    for part in path.split('.') {
+        let (key, idx) = match part.split_once('[') {
+            Some((k, rest)) => {
+                let i: usize = rest
+                    .strip_suffix(']')
+                    .and_then(|s| s.parse().ok())
+                    .ok_or_else(|| format!("`{path}`: bad index in `{part}`"))?;
+                (k, Some(i))
+            }
+            None => (part, None),
+        };
+        if !key.is_empty() {
+            cur = descend(cur, key).ok_or_else(|| no_field(path, key))?;
+        }
+        if let Some(i) = idx {
+            cur = cur
+                .get_mut(i)
+                .ok_or_else(|| format!("`{path}`: no element {i} in `{key}`"))?;
+        }
+    }
+    let n = match cur {
+        Value::Number(n) if n.is_f64() => serde_json::Number::from_f64(x),
+        Value::Number(_) if x.fract() == 0.0 && x >= 0.0 => Some((x as u64).into()),
+        Value::Number(_) => return Err(format!("`{path}` takes whole numbers, got {x}")),
+        other => return Err(format!("`{path}` is not a number (it is {other})")),
+    };
+    *cur = Value::Number(n.ok_or_else(|| format!("`{path}`: {x} is not a number"))?);
+    Ok(())
+}
+
+/// The member `key` of an object, or of the single variant an enum value
+/// is (`{"Punch": {"speed": ..}}` reached as `do.Punch.speed` or `do.speed`).
+fn descend<'a>(v: &'a mut Value, key: &str) -> Option<&'a mut Value> {
+    let obj = v.as_object_mut()?;
+    if obj.contains_key(key) {
+        return obj.get_mut(key);
+    }
+    if obj.len() == 1 {
+        return obj.values_mut().next()?.as_object_mut()?.get_mut(key);
+    }
+    None
+}
+
+fn no_field(path: &str, key: &str) -> String {
+    format!("`{path}`: the scene has no field `{key}` there")
+}
+
+/// FNV-1a over some byte strings.
+fn fnv(parts: &[&[u8]]) -> u64 {
+    let mut h = 0xcbf2_9ce4_8422_2325u64;
+    for p in parts {
+        for &b in *p {
+            h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+        }
+        h = (h ^ 0xff).wrapping_mul(0x0100_0000_01b3);
+    }
+    h
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fields_are_set_by_path_and_checked() {
+        let scene = LoadedScene::default_scene().scene;
+        let mut v = scene_value(&scene);
+        set_field(&mut v, "vh.personality.a_face", 2.5).unwrap();
+        set_field(&mut v, "timeline[0].at", 0.25).unwrap();
+        let back: Scene = serde_json::from_value(v.clone()).unwrap();
+        assert_eq!(back.vh.personality.a_face, 2.5);
+        assert_eq!(back.timeline[0].at, 0.25);
+        assert!(
+            set_field(&mut v, "vh.personality.a_fcae", 1.0)
+                .unwrap_err()
+                .contains("a_fcae")
+        );
+        assert!(set_field(&mut v, "timeline[99].at", 1.0).is_err());
+        assert!(
+            set_field(&mut v, "name", 1.0)
+                .unwrap_err()
+                .contains("not a number")
+        );
+    }
+}

@@ -1,0 +1,527 @@
+//! A procedural, linear-blend-skinned upper body (torso in a sleeveless
+//! vest, neck, arms, boxing gloves) drawn for the VH and for your avatar in
+//! place of the collision shapes. The head is the face mesh, drawn apart.
+//!
+//! Construction: every part is a grid of rings (a tube) in the rest pose of
+//! [`BodyPlan`] (arms hanging, forearms forward), closed by poles. The torso's
+//! rings are superellipses (flatter at the back, pectorals added) that close
+//! over the shoulders into the neck; the neck is a tube leaning forward whose
+//! top sits inside the head; each arm starts with a ball around the shoulder
+//! pivot (the deltoid, sunk into the torso, so the shoulder stays closed
+//! whatever the arm does), runs down the upper arm, bends round the elbow
+//! about an axis on the crook's side and ends inside the glove; the glove is
+//! a padded superellipse fist with a thumb along its inner side and a cuff.
+//! Parts overlap instead of sharing vertices. Weights blend torso and head
+//! along the neck; upper arm and forearm across the elbow (on the crook's
+//! side by the length along the crook, on the outer side across the plane
+//! bisecting the bend, so that neither side folds, tears or sinks from
+//! straight to fully bent); torso and upper arm around the shoulder. Gloves
+//! are rigid on their forearm.
+//!
+//! A [`Pose`] holds each bone's current world transform times its rest world
+//! transform's inverse: all identity is the rest pose.
+
+mod shape;
+
+use glam::{Mat4, Quat, Vec3};
+use shisen::physics::body::{BodyPlan, Seg, arm_ik};
+use shisen_face::mesh::compute_normals;
+
+use super::geometry::Vertex;
+use shape::*;
+
+/// A skinning bone; each glove rides its forearm.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(u8)]
+pub enum Bone {
+    /// The torso (root).
+    Torso,
+    /// The head (the neck's upper part follows it).
+    Head,
+    /// Left (+X) upper arm.
+    UpperArmL,
+    /// Left forearm and glove.
+    ForearmL,
+    /// Right upper arm.
+    UpperArmR,
+    /// Right forearm and glove.
+    ForearmR,
+}
+
+impl Bone {
+    /// Number of bones.
+    pub const COUNT: usize = 6;
+    /// Every bone, in index order.
+    pub const ALL: [Bone; Bone::COUNT] = {
+        use Bone::*;
+        [Torso, Head, UpperArmL, ForearmL, UpperArmR, ForearmR]
+    };
+
+    /// Upper arm of `side` (0 = left).
+    pub fn upper_arm(side: usize) -> Bone {
+        [Bone::UpperArmL, Bone::UpperArmR][side]
+    }
+
+    /// Forearm (and glove) of `side` (0 = left).
+    pub fn forearm(side: usize) -> Bone {
+        [Bone::ForearmL, Bone::ForearmR][side]
+    }
+
+    /// The physics segment that drives the bone.
+    pub fn segment(self) -> Seg {
+        [
+            Seg::Torso,
+            Seg::Head,
+            Seg::UpperArmL,
+            Seg::ForearmL,
+            Seg::UpperArmR,
+            Seg::ForearmR,
+        ][self as usize]
+    }
+}
+
+/// Each bone's world transform relative to its rest (current * rest^-1),
+/// indexed by `Bone as usize`.
+pub type Pose = [Mat4; Bone::COUNT];
+
+/// The rest pose.
+pub const REST_POSE: Pose = [Mat4::IDENTITY; Bone::COUNT];
+
+/// Colours of the body's regions, linear RGBA.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BodyStyle {
+    /// Neck, shoulders, arms.
+    pub skin: [f32; 4],
+    /// The sleeveless vest on the torso.
+    pub shirt: [f32; 4],
+    /// Gloves.
+    pub glove: [f32; 4],
+    /// The stripe round each glove's cuff.
+    pub cuff: [f32; 4],
+}
+
+impl BodyStyle {
+    /// The VH: the face's skin, a navy vest, red gloves, white cuff stripes.
+    pub const VH: BodyStyle = BodyStyle {
+        skin: SKIN,
+        shirt: [0.16, 0.22, 0.40, 1.0],
+        glove: [0.70, 0.06, 0.05, 1.0],
+        cuff: CUFF,
+    };
+    /// You: the same skin, a grey vest, blue gloves.
+    pub const YOU: BodyStyle = BodyStyle {
+        skin: SKIN,
+        shirt: [0.30, 0.31, 0.33, 1.0],
+        glove: [0.08, 0.22, 0.75, 1.0],
+        cuff: CUFF,
+    };
+}
+
+/// Skin, as the face's ([`shisen_face::appearance::FaceStyle`]).
+pub const SKIN: [f32; 4] = {
+    let s = shisen_face::appearance::FaceStyle::DEFAULT.skin;
+    [s[0], s[1], s[2], 1.0]
+};
+const CUFF: [f32; 4] = [0.92, 0.92, 0.88, 1.0];
+
+/// A rest-pose vertex with its skinning weights.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SkinVertex {
+    /// Rest position, world metres.
+    pub pos: [f32; 3],
+    /// Rest unit normal, world frame.
+    pub normal: [f32; 3],
+    /// Linear RGBA colour.
+    pub color: [f32; 4],
+    /// A painted border: signed distance inside it (in its soft
+    /// half-widths) and the colour there ([`Vertex::paint`]).
+    pub paint: [f32; 4],
+    /// Bones (`Bone as u8`) of the weights; unused slots have weight 0.
+    pub bones: [u8; 4],
+    /// Weights, non-negative, summing to 1.
+    pub weights: [f32; 4],
+}
+
+/// The skinned upper-body mesh.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyMesh {
+    vertices: Vec<SkinVertex>,
+    /// Triangle list (counter-clockwise seen from outside) of the whole body.
+    pub indices: Vec<u32>,
+    arm_indices: Vec<u32>,
+    parts: Vec<Part>,
+}
+
+impl BodyMesh {
+    /// Build the body for `plan`'s rest pose, coloured by `style`.
+    /// Deterministic.
+    pub fn new(plan: &BodyPlan, style: &BodyStyle) -> BodyMesh {
+        let mut b = Builder::default();
+        torso(&mut b, plan, style);
+        neck(&mut b, plan, style);
+        for side in 0..2 {
+            arm(&mut b, plan, style, side);
+            glove(&mut b, plan, style, side);
+        }
+        let positions: Vec<Vec3> = b.verts.iter().map(|v| Vec3::from_array(v.pos)).collect();
+        let normals = compute_normals(&positions, b.all.as_chunks::<3>().0);
+        for (v, n) in b.verts.iter_mut().zip(normals) {
+            v.normal = n.to_array();
+        }
+        BodyMesh {
+            vertices: b.verts,
+            indices: b.main,
+            arm_indices: b.arm,
+            parts: b.parts,
+        }
+    }
+
+    /// Rest vertices with their weights.
+    pub fn vertices(&self) -> &[SkinVertex] {
+        &self.vertices
+    }
+
+    /// Triangles of the forearms, gloves and the lower half of the upper
+    /// arms, with a cap closing each upper arm's cut, for the first-person
+    /// view (index the same skinned vertices as [`BodyMesh::indices`]).
+    pub fn arm_indices(&self) -> &[u32] {
+        &self.arm_indices
+    }
+
+    /// Linear blend skinning: `out` is cleared and filled with one posed
+    /// vertex per rest vertex, world frame (allocates only while `out`
+    /// grows).
+    pub fn skin(&self, pose: &Pose, out: &mut Vec<Vertex>) {
+        out.clear();
+        out.extend(self.vertices.iter().map(|v| {
+            let (p, n) = (Vec3::from_array(v.pos), Vec3::from_array(v.normal));
+            let (mut sp, mut sn) = (Vec3::ZERO, Vec3::ZERO);
+            for (&b, &w) in v.bones.iter().zip(&v.weights) {
+                if w > 0.0 {
+                    let m = &pose[b as usize];
+                    sp += w * m.transform_point3(p);
+                    sn += w * m.transform_vector3(n);
+                }
+            }
+            Vertex {
+                paint: v.paint,
+                ..Vertex::coloured(sp, sn.normalize_or(n), v.color)
+            }
+        }));
+    }
+}
+
+/// The VH's pose from its physics segments: `world_poses(segment)` gives a
+/// segment's current world position (its centre, where [`BodyPlan`] puts it
+/// at rest) and rotation (identity at rest).
+pub fn vh_pose(world_poses: impl Fn(Seg) -> (Vec3, Quat), plan: &BodyPlan) -> Pose {
+    Bone::ALL.map(|b| {
+        let (p, q) = world_poses(b.segment());
+        Mat4::from_rotation_translation(q, p)
+            * Mat4::from_translation(-plan.segments[b.segment().index()].centre)
+    })
+}
+
+/// Upper arm and forearm transforms (rest frame) of `side` for the joint
+/// rotations of [`arm_ik`]: shoulder relative to the torso, elbow relative
+/// to the upper arm.
+fn arm_mats(plan: &BodyPlan, side: usize, shoulder: Quat, elbow: Quat) -> [Mat4; 2] {
+    let about = |q: Quat, p: Vec3| {
+        Mat4::from_translation(p) * Mat4::from_quat(q) * Mat4::from_translation(-p)
+    };
+    let (s, e, ..) = arm_frame(plan, side);
+    let upper = about(shoulder, s);
+    [upper, upper * about(elbow, e)]
+}
+
+/// Your avatar's pose: the body turned to face the VH (looking along -Z, its
+/// left on world -X), hung upright from its head centre `head` (the head
+/// bone's rest centre is the plan's head centre), arms solved with
+/// [`arm_ik`] so the glove centres reach `gloves` (`gloves[0]` your left).
+pub fn avatar_pose(plan: &BodyPlan, head: Vec3, gloves: [Vec3; 2]) -> Pose {
+    let root = Mat4::from_translation(head)
+        * Mat4::from_rotation_y(std::f32::consts::PI)
+        * Mat4::from_translation(-plan.segments[Seg::Head.index()].centre);
+    let inv = root.inverse();
+    let mut pose = [root; Bone::COUNT];
+    for side in 0..2 {
+        let target = inv.transform_point3(gloves[side]);
+        let (qs, qe) = arm_ik(side, target.as_dvec3());
+        let [upper, fore] = arm_mats(plan, side, qs, qe);
+        pose[Bone::upper_arm(side) as usize] = root * upper;
+        pose[Bone::forearm(side) as usize] = root * fore;
+    }
+    pose
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn mesh() -> (BodyPlan, BodyMesh) {
+        let plan = BodyPlan::default();
+        let m = BodyMesh::new(&plan, &BodyStyle::VH);
+        (plan, m)
+    }
+
+    fn posed(m: &BodyMesh, pose: &Pose) -> Vec<Vec3> {
+        let mut out = Vec::new();
+        m.skin(pose, &mut out);
+        out.iter().map(|v| Vec3::from_array(v.pos)).collect()
+    }
+
+    fn tris<'a>(
+        m: &'a BodyMesh,
+        p: &'a [Vec3],
+    ) -> impl Iterator<Item = ([u32; 3], [Vec3; 3])> + 'a {
+        m.indices
+            .as_chunks::<3>()
+            .0
+            .iter()
+            .map(|t| (*t, t.map(|i| p[i as usize])))
+    }
+
+    /// Area-weighted centroid of the fist's surface of `side`.
+    fn fist(m: &BodyMesh, p: &[Vec3], side: usize) -> Vec3 {
+        let (mut sum, mut area) = (Vec3::ZERO, 0.0);
+        for (t, [a, b, c]) in tris(m, p) {
+            if t.iter().all(|&i| m.parts[i as usize] == Part::Fist(side)) {
+                let s = (b - a).cross(c - a).length();
+                (sum, area) = (sum + s * (a + b + c) / 3.0, area + s);
+            }
+        }
+        sum / area
+    }
+
+    /// The VH's arms at the given shoulder and elbow rotations, or reaching
+    /// for glove targets.
+    fn arms(plan: &BodyPlan, rot: impl Fn(usize) -> (Quat, Quat)) -> Pose {
+        let mut pose = REST_POSE;
+        for side in 0..2 {
+            let (qs, qe) = rot(side);
+            let [u, f] = arm_mats(plan, side, qs, qe);
+            (
+                pose[Bone::upper_arm(side) as usize],
+                pose[Bone::forearm(side) as usize],
+            ) = (u, f);
+        }
+        pose
+    }
+
+    fn reach(plan: &BodyPlan, targets: [Vec3; 2]) -> Pose {
+        arms(plan, |side| arm_ik(side, targets[side].as_dvec3()))
+    }
+
+    /// Largest edge stretch, and the number of triangles whose skinned
+    /// normal opposes their rest normal carried by their vertices' bones.
+    fn distortion(m: &BodyMesh, pose: &Pose, keep: impl Fn(Part) -> bool) -> (f32, usize) {
+        let (p0, p1) = (posed(m, &REST_POSE), posed(m, pose));
+        let (mut stretch, mut flips) = (0.0f32, 0);
+        for ((t, [a, b, c]), (_, [a1, b1, c1])) in tris(m, &p0).zip(tris(m, &p1)) {
+            if !t.iter().all(|&i| keep(m.parts[i as usize])) {
+                continue;
+            }
+            for (e0, e1) in [(b - a, b1 - a1), (c - b, c1 - b1), (a - c, a1 - c1)] {
+                stretch = stretch.max(e1.length() / e0.length());
+            }
+            let n0 = (b - a).cross(c - a);
+            let carried: Vec3 = (t.iter())
+                .flat_map(|&i| {
+                    m.vertices[i as usize]
+                        .bones
+                        .into_iter()
+                        .zip(m.vertices[i as usize].weights)
+                })
+                .map(|(b, w)| w * pose[b as usize].transform_vector3(n0))
+                .sum();
+            flips += usize::from((b1 - a1).cross(c1 - a1).dot(carried) <= 0.0);
+        }
+        (stretch, flips)
+    }
+
+    #[test]
+    fn weights_are_normalised() {
+        let (_, m) = mesh();
+        for v in &m.vertices {
+            assert!(v.weights.iter().all(|&w| w >= 0.0), "{v:?}");
+            assert!((v.weights.iter().sum::<f32>() - 1.0).abs() < 1e-5, "{v:?}");
+            assert!(v.bones.iter().all(|&b| (b as usize) < Bone::COUNT));
+        }
+    }
+
+    #[test]
+    fn mesh_is_well_formed() {
+        let (plan, m) = mesh();
+        let n = m.vertices.len();
+        assert!((3000..=8000).contains(&n), "{n} vertices");
+        assert_eq!(m, BodyMesh::new(&plan, &BodyStyle::VH), "deterministic");
+        let p = posed(&m, &REST_POSE);
+        for list in [&m.indices, &m.arm_indices] {
+            assert!(!list.is_empty() && list.len() % 3 == 0);
+            assert!(list.iter().all(|&i| (i as usize) < n));
+            for t in list.as_chunks::<3>().0 {
+                let [a, b, c] = t.map(|i| p[i as usize]);
+                assert!(
+                    (b - a).cross(c - a).length() > 2e-8,
+                    "degenerate {t:?}: {a} {b} {c}"
+                );
+            }
+        }
+        assert!(
+            m.vertices
+                .iter()
+                .all(|v| (Vec3::from_array(v.normal).length() - 1.0).abs() < 1e-4)
+        );
+        // Outward winding: a positive enclosed volume, about the torso's.
+        let o = Vec3::new(0.0, 1.25, 0.0);
+        let vol: f32 = tris(&m, &p)
+            .map(|(_, [a, b, c])| (a - o).dot((b - o).cross(c - o)) / 6.0)
+            .sum();
+        assert!(vol > 0.015, "volume {vol}");
+    }
+
+    #[test]
+    fn rest_pose_reproduces_rest_vertices() {
+        let (_, m) = mesh();
+        let mut out = Vec::new();
+        m.skin(&REST_POSE, &mut out);
+        assert_eq!(out.len(), m.vertices.len());
+        for (s, v) in out.iter().zip(&m.vertices) {
+            assert!(Vec3::from_array(s.pos).distance(Vec3::from_array(v.pos)) < 1e-6);
+            assert!(Vec3::from_array(s.normal).distance(Vec3::from_array(v.normal)) < 1e-5);
+            assert_eq!(s.color, v.color);
+        }
+    }
+
+    #[test]
+    fn glove_follows_the_forearm() {
+        let (plan, m) = mesh();
+        let rest_fist = [0, 1].map(|s| fist(&m, &posed(&m, &REST_POSE), s));
+        for targets in [
+            [Vec3::new(0.11, 1.56, 0.27), Vec3::new(-0.11, 1.56, 0.27)],
+            [Vec3::new(0.0, 1.55, 0.5), Vec3::new(-0.3, 1.3, 0.3)],
+        ] {
+            // Through vh_pose, from the segments' world poses, torso lunging.
+            let lunge = Mat4::from_translation(Vec3::new(0.02, 0.0, 0.1));
+            let pose = reach(&plan, targets).map(|m| lunge * m);
+            let world = |s: Seg| {
+                let m = pose[Bone::ALL.iter().position(|b| b.segment() == s).unwrap()];
+                (
+                    m.transform_point3(plan.segments[s.index()].centre),
+                    m.to_scale_rotation_translation().1,
+                )
+            };
+            let from_physics = vh_pose(world, &plan);
+            for (a, b) in from_physics.iter().zip(&pose) {
+                assert!(a.abs_diff_eq(*b, 1e-5), "{a} vs {b}");
+            }
+            let p = posed(&m, &from_physics);
+            for side in 0..2 {
+                let target = lunge.transform_point3(targets[side]);
+                let fore = from_physics[Bone::forearm(side) as usize];
+                let got = fist(&m, &p, side);
+                assert!(got.distance(fore.transform_point3(rest_fist[side])) < 1e-4);
+                assert!(got.distance(target) < 0.01, "{got} vs {target}");
+            }
+        }
+    }
+
+    #[test]
+    fn arms_stay_continuous_when_bent() {
+        let (plan, m) = mesh();
+        let flex = |deg: f32| Quat::from_rotation_x(-deg.to_radians());
+        let not_neck = |p: Part| p != Part::Neck;
+        // Shoulder flexion, and the elbow's from its rest bend of 90 deg:
+        // -90 a straight arm, +30 a 120 deg flexion.
+        for (shoulder, elbow) in [(90.0, 30.0), (90.0, -90.0), (0.0, 45.0), (45.0, -60.0)] {
+            let pose = arms(&plan, |_| (flex(shoulder), flex(elbow)));
+            let (stretch, flips) = distortion(&m, &pose, not_neck);
+            assert!(
+                stretch < 3.0 && flips == 0,
+                "{shoulder}/{elbow}: {stretch} {flips}"
+            );
+        }
+        for targets in [
+            [Vec3::new(0.11, 1.56, 0.27), Vec3::new(-0.11, 1.56, 0.27)],
+            [Vec3::new(0.05, 1.55, 0.55), Vec3::new(-0.2, 1.6, 0.45)],
+        ] {
+            let (stretch, flips) = distortion(&m, &reach(&plan, targets), not_neck);
+            assert!(
+                stretch < 3.0 && flips == 0,
+                "{targets:?}: {stretch} {flips}"
+            );
+        }
+        // Straightened, the elbow keeps most of its girth (no collapse).
+        let p = posed(&m, &arms(&plan, |_| (Quat::IDENTITY, flex(-90.0))));
+        let elbow = plan.segments[Seg::ForearmL.index()].pivot;
+        for (i, q) in p.iter().enumerate() {
+            if m.parts[i] == Part::Arm(0) && (q.y - elbow.y).abs() < 0.08 {
+                let r = (*q - elbow).with_y(0.0).length();
+                assert!(r > 0.03, "girth {r} at {}", q.y - elbow.y);
+            }
+        }
+    }
+
+    #[test]
+    fn neck_follows_the_head() {
+        let (plan, m) = mesh();
+        let (pivot, head_c) = (
+            plan.segments[Seg::Head.index()].pivot,
+            plan.segments[Seg::Head.index()].centre,
+        );
+        for (yaw, pitch) in [
+            (70.0f32, 0.0f32),
+            (-70.0, 0.0),
+            (0.0, -60.0),
+            (0.0, 50.0),
+            (50.0, -40.0),
+        ] {
+            let q = Quat::from_rotation_y(yaw.to_radians())
+                * Quat::from_rotation_x(-pitch.to_radians());
+            let mut pose = REST_POSE;
+            pose[Bone::Head as usize] =
+                Mat4::from_translation(pivot) * Mat4::from_quat(q) * Mat4::from_translation(-pivot);
+            let (stretch, flips) = distortion(&m, &pose, |p| p == Part::Neck);
+            assert!(
+                stretch < 3.0 && flips == 0,
+                "{yaw}/{pitch}: {stretch} {flips}"
+            );
+            // The neck's top stays inside the head.
+            let head = pose[Bone::Head as usize].transform_point3(head_c);
+            for (i, p) in posed(&m, &pose).iter().enumerate() {
+                if m.parts[i] == Part::Neck && m.vertices[i].pos[1] > pivot.y + 0.09 {
+                    assert!(p.distance(head) < 0.1, "{yaw}/{pitch}: {p}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn avatar_gloves_reach_the_targets() {
+        let (plan, m) = mesh();
+        let head = Vec3::new(0.03, 1.70, 0.92);
+        let rest = posed(&m, &REST_POSE);
+        let more = [Vec3::new(-0.05, 1.6, 0.45), Vec3::new(0.2, 1.45, 0.7)];
+        for gloves in [plan.opponent_gloves, more] {
+            let pose = avatar_pose(&plan, head, gloves);
+            let h =
+                pose[Bone::Head as usize].transform_point3(plan.segments[Seg::Head.index()].centre);
+            assert!(h.distance(head) < 1e-5);
+            let p = posed(&m, &pose);
+            for side in 0..2 {
+                let (fore, got) = (pose[Bone::forearm(side) as usize], fist(&m, &p, side));
+                assert!(got.distance(gloves[side]) < 0.01, "{got} vs {gloves:?}");
+                assert!(got.distance(fore.transform_point3(fist(&m, &rest, side))) < 1e-4);
+            }
+            // Facing the VH: the avatar's left arm is on world -X.
+            let mean_x = |side| {
+                let arm: Vec<f32> = (0..p.len())
+                    .filter(|&i| m.parts[i] == Part::Arm(side))
+                    .map(|i| p[i].x)
+                    .collect();
+                arm.iter().sum::<f32>() / arm.len() as f32
+            };
+            assert!(mean_x(0) < mean_x(1));
+        }
+    }
+}
