@@ -7,7 +7,7 @@ use glam::{Mat4, Quat, Vec3};
 
 use shisen::sim::Sim;
 
-use super::frame::{Draw, Material, MeshKey};
+use super::draw::{Draw, Material, MeshKey};
 use super::geometry::Vertex;
 
 /// Inside of the mouth, and teeth.

@@ -8,7 +8,8 @@ use std::num::NonZeroU64;
 use glam::{Mat3, Mat4, Vec3};
 use wgpu::util::DeviceExt;
 
-use super::frame::{AvatarPart, Frame, LineVertex, Looks, Material, MeshKey};
+use super::draw::{LineVertex, Material, MeshKey};
+use super::frame::{AvatarPart, Frame, Looks};
 use super::geometry::{self, MeshData, Vertex};
 
 /// Rendering errors.

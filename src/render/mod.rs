@@ -11,13 +11,15 @@
 
 pub mod body;
 mod camera;
+mod draw;
 mod face_parts;
 mod frame;
 pub mod geometry;
 mod gpu;
 
 pub use camera::{Camera, View};
-pub use frame::{Draw, Frame, Label, LineVertex, Material, MeshKey, Overlays, face_offset};
+pub use draw::{Draw, Label, LineVertex, Material, MeshKey};
+pub use frame::{Frame, Overlays, face_offset};
 pub use gpu::{Blit, BlitBind, COLOR_FORMAT, COLOR_FORMAT_UNORM, RenderError, Renderer};
 
 use std::path::Path;

@@ -82,7 +82,7 @@ const SOFT: [f32; 3] = [0.0012, 0.0018, 0.0015];
 /// choice: past the mouth's corners, short of the eyes).
 const MOUTH_INSIDE_REACH: f32 = 0.024;
 
-/// [`MOUTH_INSIDE_REACH`] as the lips' painted signed distance (the first
+/// `MOUTH_INSIDE_REACH` as the lips' painted signed distance (the first
 /// of [`Regions`], in their soft border's units): the renderer draws a
 /// back face whose value exceeds it in the mouth's inside colour.
 pub const MOUTH_INSIDE_LIMIT: f32 = -MOUTH_INSIDE_REACH / SOFT[0];

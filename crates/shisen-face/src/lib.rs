@@ -23,7 +23,7 @@ pub mod muscle;
 pub mod params;
 pub mod rig;
 pub mod script;
-mod spread;
+pub mod spread;
 pub mod tables;
 pub mod timing;
 pub mod wrinkle;

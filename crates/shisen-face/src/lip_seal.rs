@@ -29,7 +29,7 @@ pub struct LipSeal {
     /// Column of each region vertex.
     pub column: Vec<u32>,
     /// Weight of each region vertex: 1 on the lower lip's margin, 0 at
-    /// [`SEAL_REACH`] below it and at the mouth's corners.
+    /// `SEAL_REACH` below it and at the mouth's corners.
     pub weight: Vec<f32>,
 }
 

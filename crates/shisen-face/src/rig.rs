@@ -31,6 +31,7 @@ use super::tables::MuscleKind;
 use glam::Vec3;
 
 pub use crate::lip_seal::LipSeal;
+pub use crate::spread::SparseField;
 use crate::spread::Spread;
 
 fn eye_centre(l: &Landmarks, side: Side) -> Vec3 {
@@ -65,15 +66,6 @@ impl MuscleGeometry {
             MuscleGeometry::Lid(s) => s.displacement(p, k),
         }
     }
-}
-
-/// Displacement per unit contraction of the vertices a channel moves.
-#[derive(Clone, Debug, PartialEq, Default)]
-pub struct SparseField {
-    /// Vertex indices.
-    pub index: Vec<u32>,
-    /// Displacement at k = 1 of each listed vertex.
-    pub delta: Vec<Vec3>,
 }
 
 /// Precomputed jaw data (F7).

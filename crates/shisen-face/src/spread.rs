@@ -1,10 +1,20 @@
-//! The skin's spread of a linear muscle's pull (S1, docs/model/face.md):
-//! each field diffused along the mesh once, when the rig is built.
+//! Sparse displacement fields (a muscle's displacement per unit
+//! contraction on the vertices it moves), and the skin's spread of a
+//! linear muscle's pull (S1, docs/model/face.md): each field diffused along
+//! the mesh once, when the rig is built.
 
 use glam::Vec3;
 
 use crate::mesh::HeadMesh;
-use crate::rig::SparseField;
+
+/// Displacement per unit contraction of the vertices a channel moves.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct SparseField {
+    /// Vertex indices.
+    pub index: Vec<u32>,
+    /// Displacement at k = 1 of each listed vertex.
+    pub delta: Vec<Vec3>,
+}
 
 /// S1, the skin's spread of a muscle's pull: a field diffused along the
 /// mesh (never across an opening it leaves, lips or lids) by the explicit

@@ -4,7 +4,7 @@
 //! target is compared by what it is, not by its name.
 
 /// A typed handle to one body of the world vision looks at: the bodies are
-/// numbered `0..n` ([`Scenery::body_count`]) and never renumbered while a
+/// numbered `0..n` ([`crate::vision::Scenery::body_count`]) and never renumbered while a
 /// world lives, so a handle names the same body from tick to tick. Use it
 /// to index per-body tables with [`BodyId::index`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

@@ -25,10 +25,8 @@ mod shape;
 
 use glam::{Mat4, Quat, Vec3};
 use shisen::physics::body::{BodyPlan, Seg, arm_ik};
-use shisen_face::mesh::compute_normals;
 
 use super::geometry::Vertex;
-use shape::*;
 
 /// A skinning bone; each glove rides its forearm.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -142,6 +140,16 @@ pub struct SkinVertex {
     pub weights: [f32; 4],
 }
 
+/// Which part a vertex belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Part {
+    Torso,
+    Neck,
+    Arm(usize),
+    Cuff(usize),
+    Fist(usize),
+}
+
 /// The skinned upper-body mesh.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BodyMesh {
@@ -153,29 +161,6 @@ pub struct BodyMesh {
 }
 
 impl BodyMesh {
-    /// Build the body for `plan`'s rest pose, coloured by `style`.
-    /// Deterministic.
-    pub fn new(plan: &BodyPlan, style: &BodyStyle) -> BodyMesh {
-        let mut b = Builder::default();
-        torso(&mut b, plan, style);
-        neck(&mut b, plan, style);
-        for side in 0..2 {
-            arm(&mut b, plan, style, side);
-            glove(&mut b, plan, style, side);
-        }
-        let positions: Vec<Vec3> = b.verts.iter().map(|v| Vec3::from_array(v.pos)).collect();
-        let normals = compute_normals(&positions, b.all.as_chunks::<3>().0);
-        for (v, n) in b.verts.iter_mut().zip(normals) {
-            v.normal = n.to_array();
-        }
-        BodyMesh {
-            vertices: b.verts,
-            indices: b.main,
-            arm_indices: b.arm,
-            parts: b.parts,
-        }
-    }
-
     /// Rest vertices with their weights.
     pub fn vertices(&self) -> &[SkinVertex] {
         &self.vertices
@@ -222,6 +207,14 @@ pub fn vh_pose(world_poses: impl Fn(Seg) -> (Vec3, Quat), plan: &BodyPlan) -> Po
     })
 }
 
+/// Rest landmarks of one arm: shoulder, elbow, glove centre, unit
+/// directions of upper arm and forearm.
+fn arm_frame(plan: &BodyPlan, side: usize) -> (Vec3, Vec3, Vec3, Vec3, Vec3) {
+    let s = plan.segments[Bone::upper_arm(side).segment().index()].pivot;
+    let e = plan.segments[Bone::forearm(side).segment().index()].pivot;
+    let g = plan.segments[[Seg::GloveL, Seg::GloveR][side].index()].centre;
+    (s, e, g, (e - s).normalize(), (g - e).normalize())
+}
 /// Upper arm and forearm transforms (rest frame) of `side` for the joint
 /// rotations of [`arm_ik`]: shoulder relative to the torso, elbow relative
 /// to the upper arm.

@@ -8,22 +8,14 @@ use glam::{Quat, Vec3};
 use shisen::physics::body::{BodyPlan, Seg, Shape};
 use shisen::util::math::{gauss, hermite, smoothstep};
 
-use super::{BodyStyle, Bone, SkinVertex};
+use shisen_face::mesh::compute_normals;
 
-/// Which part a vertex belongs to.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum Part {
-    Torso,
-    Neck,
-    Arm(usize),
-    Cuff(usize),
-    Fist(usize),
-}
+use super::{BodyMesh, BodyStyle, Bone, Part, SkinVertex, arm_frame};
 
-pub(super) type Weights = ([u8; 4], [f32; 4]);
+type Weights = ([u8; 4], [f32; 4]);
 
 /// Weights from (bone, weight) pairs, normalised; zeros dropped.
-pub(super) fn weights(pairs: &[(Bone, f32)]) -> Weights {
+fn weights(pairs: &[(Bone, f32)]) -> Weights {
     let (mut bones, mut w, mut n) = ([0u8; 4], [0f32; 4], 0);
     for &(b, x) in pairs {
         if x > 1e-4 && n < 4 {
@@ -38,24 +30,24 @@ pub(super) fn weights(pairs: &[(Bone, f32)]) -> Weights {
 /// A vertex under construction: position, colour, weights, part, painted
 /// border ([`Vertex::paint`]).
 #[derive(Clone, Copy)]
-pub(super) struct Pt(Vec3, [f32; 4], Weights, Part, [f32; 4]);
+struct Pt(Vec3, [f32; 4], Weights, Part, [f32; 4]);
 
 /// Where a grid's triangles go: the whole body, also the first-person arm
 /// list from a ring on, or the arm list only.
 #[derive(Clone, Copy)]
-pub(super) enum Dest {
+enum Dest {
     Main,
     MainAndArm(usize),
     ArmOnly,
 }
 
 #[derive(Default)]
-pub(super) struct Builder {
-    pub(super) verts: Vec<SkinVertex>,
-    pub(super) parts: Vec<Part>,
-    pub(super) main: Vec<u32>,
-    pub(super) arm: Vec<u32>,
-    pub(super) all: Vec<u32>,
+struct Builder {
+    verts: Vec<SkinVertex>,
+    parts: Vec<Part>,
+    main: Vec<u32>,
+    arm: Vec<u32>,
+    all: Vec<u32>,
 }
 
 impl Builder {
@@ -120,20 +112,20 @@ impl Builder {
     }
 }
 
-pub(super) fn ring(cols: usize, f: impl Fn(f32) -> Pt) -> Vec<Pt> {
+fn ring(cols: usize, f: impl Fn(f32) -> Pt) -> Vec<Pt> {
     (0..cols).map(|j| f(TAU * j as f32 / cols as f32)).collect()
 }
 
 /// Column `col` of `rows` against column 0 (ascending), interpolated
 /// ([`hermite`]); constant outside.
-pub(super) fn table<const N: usize>(rows: &[[f32; N]], col: usize, x: f32) -> f32 {
+fn table<const N: usize>(rows: &[[f32; N]], col: usize, x: f32) -> f32 {
     hermite(rows.len(), |i| (rows[i][0], rows[i][col]), x)
 }
 
 /// Torso sections, design metres for the default plan: height, half-width,
 /// front depth, back depth; from the waist up over the shoulders to the neck.
 #[rustfmt::skip]
-pub(super) const TORSO: [[f32; 4]; 13] = [
+const TORSO: [[f32; 4]; 13] = [
     [1.000, 0.138, 0.088, 0.086], [1.080, 0.140, 0.090, 0.088], [1.160, 0.146, 0.094, 0.090],
     [1.240, 0.156, 0.098, 0.093], [1.310, 0.165, 0.100, 0.096], [1.370, 0.170, 0.100, 0.098],
     [1.420, 0.178, 0.097, 0.099], [1.455, 0.182, 0.090, 0.096], [1.478, 0.170, 0.080, 0.090],
@@ -144,50 +136,50 @@ pub(super) const TORSO: [[f32; 4]; 13] = [
 /// Above the chin the neck is inside the head, slimmed so it stays behind
 /// the mouth's cavity (it would show through parted lips).
 #[rustfmt::skip]
-pub(super) const NECK: [[f32; 3]; 6] = [
+const NECK: [[f32; 3]; 6] = [
     [-0.06, 0.066, 0.057], [-0.02, 0.062, 0.055], [0.01, 0.057, 0.054], [0.05, 0.056, 0.052],
     [0.08, 0.050, 0.038], [0.10, 0.040, 0.030],
 ];
 /// Upper arm: distance below the shoulder, radii toward the front and across.
 #[rustfmt::skip]
-pub(super) const UPPER_ARM: [[f32; 3]; 4] =
+const UPPER_ARM: [[f32; 3]; 4] =
     [[0.0, 0.055, 0.055], [0.05, 0.051, 0.052], [0.10, 0.046, 0.045], [0.20, 0.044, 0.041]];
 /// Forearm: distance from the elbow, radii toward the top and across.
 #[rustfmt::skip]
-pub(super) const FOREARM: [[f32; 3]; 5] = [
+const FOREARM: [[f32; 3]; 5] = [
     [0.05, 0.041, 0.041], [0.09, 0.040, 0.044], [0.13, 0.035, 0.038], [0.17, 0.031, 0.032],
     [0.23, 0.028, 0.029],
 ];
 /// Glove: distance ahead of the glove centre, half-height above (back of
 /// the hand) and below (palm), half-width; the cuff, then the fist.
 #[rustfmt::skip]
-pub(super) const GLOVE: [[f32; 4]; 10] = [
+const GLOVE: [[f32; 4]; 10] = [
     [-0.135, 0.027, 0.027, 0.027], [-0.131, 0.041, 0.041, 0.041], [-0.126, 0.046, 0.046, 0.046],
     [-0.09, 0.048, 0.048, 0.048], [-0.07, 0.049, 0.0485, 0.049], [-0.052, 0.054, 0.049, 0.051],
     [-0.03, 0.058, 0.0495, 0.052], [0.0, 0.06, 0.05, 0.052], [0.02, 0.059, 0.049, 0.052],
     [0.03, 0.059, 0.049, 0.052],
 ];
-pub(super) const TORSO_COLS: usize = 56;
-pub(super) const NECK_COLS: usize = 24;
-pub(super) const ARM_COLS: usize = 24;
-pub(super) const GLOVE_COLS: usize = 32;
+const TORSO_COLS: usize = 56;
+const NECK_COLS: usize = 24;
+const ARM_COLS: usize = 24;
+const GLOVE_COLS: usize = 32;
 /// Radius of the ball round each shoulder pivot (the deltoid).
-pub(super) const DELTOID_R: f32 = 0.055;
+const DELTOID_R: f32 = 0.055;
 /// Radius of the arm at the elbow.
-pub(super) const ELBOW_R: f32 = 0.041;
+const ELBOW_R: f32 = 0.041;
 /// Radius of the elbow's bend in the rest pose, about an axis on the
 /// crook's side (greater than `ELBOW_R`, so the crook does not fold).
-pub(super) const ELBOW_BEND: f32 = 0.052;
+const ELBOW_BEND: f32 = 0.052;
 /// Half-length of the elbow's weight blend along the crook.
-pub(super) const ELBOW_BLEND: f32 = 0.05;
+const ELBOW_BLEND: f32 = 0.05;
 /// First-person arm list: the upper arm from this far below the shoulder.
-pub(super) const FIRST_PERSON_FROM: f32 = 0.12;
+const FIRST_PERSON_FROM: f32 = 0.12;
 
 /// The vest's neckline and armholes at a torso point (design frame): the
 /// signed distance inside them (bare skin), in units of the hem's soft
 /// half-width, as the border of a [`Vertex::paint`] (the renderer
 /// thresholds it per pixel, so the hem stays sharp on the coarse torso).
-pub(super) fn vest(d: Vec3) -> f32 {
+fn vest(d: Vec3) -> f32 {
     let arm = ((d.x.abs() - 0.215) / 0.085).powi(2) + ((d.y - 1.47) / 0.15).powi(2);
     let depth = 0.035 + 0.05 * smoothstep(-0.02, 0.04, d.z);
     let neck = (d.x / 0.09).powi(2) + ((d.y - 1.535) / depth).powi(2);
@@ -196,13 +188,13 @@ pub(super) fn vest(d: Vec3) -> f32 {
 }
 
 /// Half-width of the vest hem's soft edge, m.
-pub(super) const HEM_SOFT: f32 = 0.0015;
+const HEM_SOFT: f32 = 0.0015;
 
 /// A vertex's painted border: none.
-pub(super) const NO_BORDER: [f32; 4] = [-1e3, 0.0, 0.0, 0.0];
+const NO_BORDER: [f32; 4] = [-1e3, 0.0, 0.0, 0.0];
 
 /// Torso section point (design frame) at angle `th` (0 front, +X at pi/2).
-pub(super) fn torso_point(y: f32, a: f32, f: f32, b: f32, th: f32) -> Vec3 {
+fn torso_point(y: f32, a: f32, f: f32, b: f32, th: f32) -> Vec3 {
     let (s, c) = th.sin_cos();
     let e = 2.0 / if c >= 0.0 { 2.6 } else { 3.2 };
     let x = a * s.signum() * s.abs().powf(e);
@@ -218,7 +210,7 @@ pub(super) fn torso_point(y: f32, a: f32, f: f32, b: f32, th: f32) -> Vec3 {
     Vec3::new(x, y, z)
 }
 
-pub(super) fn torso(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle) {
+fn torso(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle) {
     let t = &plan.segments[Seg::Torso.index()];
     let half = match t.shape {
         Shape::Cuboid { half } => half,
@@ -251,7 +243,7 @@ pub(super) fn torso(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle) {
     b.grid(&rings[..1], [Some(waist), None], Dest::Main);
 }
 
-pub(super) fn neck(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle) {
+fn neck(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle) {
     let pivot = plan.segments[Seg::Head.index()].pivot;
     let point = |dy: f32, th: f32| {
         let (s, c) = th.sin_cos();
@@ -272,20 +264,11 @@ pub(super) fn neck(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle) {
     b.grid(&rings, [Some(bottom), Some(top)], Dest::Main);
 }
 
-/// Rest landmarks of one arm: shoulder, elbow, glove centre, unit
-/// directions of upper arm and forearm.
-pub(super) fn arm_frame(plan: &BodyPlan, side: usize) -> (Vec3, Vec3, Vec3, Vec3, Vec3) {
-    let s = plan.segments[Bone::upper_arm(side).segment().index()].pivot;
-    let e = plan.segments[Bone::forearm(side).segment().index()].pivot;
-    let g = plan.segments[[Seg::GloveL, Seg::GloveR][side].index()].centre;
-    (s, e, g, (e - s).normalize(), (g - e).normalize())
-}
-
 /// An arm's ring: centre, turn about the elbow (its frame), radii toward U
 /// and V, bulges on the crook's and the outer side, length along the crook.
-pub(super) type ArmRing = (Vec3, f32, [f32; 2], [f32; 2], f32);
+type ArmRing = (Vec3, f32, [f32; 2], [f32; 2], f32);
 
-pub(super) fn arm(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle, side: usize) {
+fn arm(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle, side: usize) {
     let (s, e, g, d1, d2) = arm_frame(plan, side);
     let (l1, l2) = (s.distance(e), e.distance(g));
     let axis = d1.cross(d2).normalize();
@@ -378,7 +361,7 @@ pub(super) fn arm(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle, side: usi
     b.grid(&rings[cut..=cut], [Some(centre), None], Dest::ArmOnly);
 }
 
-pub(super) fn glove(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle, side: usize) {
+fn glove(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle, side: usize) {
     let (_, _, g, d1, d2) = arm_frame(plan, side);
     // The fist's surface centred on the glove centre (its knuckle face just
     // inside the collision ball).
@@ -433,4 +416,29 @@ pub(super) fn glove(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle, side: u
     let mut pole = point(front + depth, 0.0, 0.0);
     pole.0 = g + d2 * (front + depth) + u * 0.004;
     b.grid(&rings, [None, Some(pole)], Dest::MainAndArm(0));
+}
+
+impl BodyMesh {
+    /// Build the body for `plan`'s rest pose, coloured by `style`.
+    /// Deterministic.
+    pub fn new(plan: &BodyPlan, style: &BodyStyle) -> BodyMesh {
+        let mut b = Builder::default();
+        torso(&mut b, plan, style);
+        neck(&mut b, plan, style);
+        for side in 0..2 {
+            arm(&mut b, plan, style, side);
+            glove(&mut b, plan, style, side);
+        }
+        let positions: Vec<Vec3> = b.verts.iter().map(|v| Vec3::from_array(v.pos)).collect();
+        let normals = compute_normals(&positions, b.all.as_chunks::<3>().0);
+        for (v, n) in b.verts.iter_mut().zip(normals) {
+            v.normal = n.to_array();
+        }
+        BodyMesh {
+            vertices: b.verts,
+            indices: b.main,
+            arm_indices: b.arm,
+            parts: b.parts,
+        }
+    }
 }

@@ -221,7 +221,7 @@ impl From<Seg> for BodyId {
 }
 
 /// A part of the opponent avatar (yours, in the window): a typed handle
-/// into [`crate::physics::world::World::opponent`].
+/// into the world's opponent bodies ([`crate::physics::world::World::part`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum OpponentPart {
     /// The head.

@@ -1,18 +1,15 @@
-//! The opponent avatar in the physics: its head and gloves are dynamic
-//! balls driven toward their scripted (or live) targets by a bounded
-//! spring-damper, so a punch that lands transfers momentum and a blocked
-//! glove pushes with a finite force. Scene props that are scripted move
-//! through the same [`World::drive`].
+//! The opponent avatar's physical description: its parts' masses and the
+//! bounded spring-damper that drives them toward their scripted (or live)
+//! targets, so a punch that lands transfers momentum and a blocked glove
+//! pushes with a finite force. The world builds the parts from it
+//! ([`crate::physics::world::World::new`]) and applies the drive
+//! ([`crate::physics::world::World::drive`]).
 
 use glam::Vec3;
-use rapier3d::prelude::*;
-
-use crate::physics::body::{BodyPlan, OpponentPart};
-use crate::physics::world::{BodyInfo, Owner, World};
-use shisen_gaze::vision::BodyId;
 
 /// Masses of the opponent's head and gloves (a glove carries the effective
-/// mass of the arm behind it), kg, in [`OpponentPart`] order.
+/// mass of the arm behind it), kg, in [`crate::physics::body::OpponentPart`]
+/// order.
 pub const OPPONENT_MASS: [f32; 3] = [5.0, 1.5, 1.5];
 /// Drive of the opponent's parts, per kg: natural frequency 40 rad/s,
 /// critically damped (k = w^2, c = 2 w). A free glove tracks a 0.2 s
@@ -25,78 +22,30 @@ const DRIVE_DAMPING: f32 = 80.0;
 /// is moving) differentiates to accelerations of 10^4 m/s^2; uncapped, that
 /// feed-forward flung an opponent glove into the VH's at 40 m/s in one
 /// step (the long soaks' arm blow-ups).
-const DRIVE_MAX_ACCEL: f32 = 400.0;
+pub const DRIVE_MAX_ACCEL: f32 = 400.0;
 
-/// World build step: the opponent's head and gloves, after the VH's
-/// segments. Returns their bodies in [`OpponentPart`] order.
-pub(crate) fn add_opponent(
-    phys: &mut PhysicsWorld,
-    plan: &BodyPlan,
-    bodies: &mut Vec<BodyInfo>,
-) -> [BodyId; 3] {
-    let positions = [
-        plan.opponent_head,
-        plan.opponent_gloves[0],
-        plan.opponent_gloves[1],
-    ];
-    let radii = [
-        plan.opponent_head_radius,
-        plan.glove_radius,
-        plan.glove_radius,
-    ];
-    OpponentPart::ALL.map(|part| {
-        let k = part.index();
-        let idx = bodies.len();
-        // Dynamic, driven by a spring-damper toward the scripted or live
-        // target (see `World::drive`): finite mass and strength, so a punch
-        // that lands transfers momentum, and an arm caught between a
-        // glove and the torso is pushed, not crushed.
-        let h = phys.insert_body(
-            RigidBodyBuilder::dynamic()
-                .translation(positions[k])
-                .gravity_scale(0.0)
-                .lock_rotations()
-                .can_sleep(false)
-                .user_data(idx as u128),
-        );
-        let c = phys.insert_collider(
-            ColliderBuilder::ball(radii[k])
-                .mass(OPPONENT_MASS[k])
-                .collision_groups(InteractionGroups::all())
-                .user_data(idx as u128),
-            Some(h),
-        );
-        bodies.push(BodyInfo {
-            name: part.name().to_string(),
-            handle: h,
-            collider: c,
-            owner: Owner::Opponent(part),
-            kinematic: false,
-            offset: Vec3::ZERO,
-        });
-        BodyId::new(idx)
-    })
+/// A driven part's state and its target's: the part's mass, position
+/// and velocity, and where its path is, how fast and how fast speeding up.
+#[derive(Clone, Copy, Debug)]
+pub struct DriveState {
+    /// The part's mass, kg.
+    pub mass: f32,
+    /// The part's position and velocity now.
+    pub at: (Vec3, Vec3),
+    /// The target's position, velocity and acceleration.
+    pub target: (Vec3, Vec3, Vec3),
 }
 
-impl World {
-    /// Move a scripted body toward `position` (with the target's velocity
-    /// and acceleration): kinematic props go exactly there at the end of
-    /// the next step; the opponent's dynamic parts are pulled by a
-    /// spring-damper with feed-forward, `F = m a + c (v - v_b) + k (p - p_b)`,
-    /// whose stiffness bounds the force a blocked glove can push with.
-    pub fn drive(&mut self, body: BodyId, position: Vec3, velocity: Vec3, accel: Vec3) {
-        let h = self.info(body).handle;
-        let dt = self.dt as f32;
-        let rb = &mut self.phys.bodies[h];
-        if rb.is_kinematic() {
-            rb.set_next_kinematic_translation(position);
-            return;
-        }
-        let m = rb.mass();
-        let (k, c) = (DRIVE_STIFFNESS * m, DRIVE_DAMPING * m);
-        let f = m * accel + c * (velocity - rb.linvel()) + k * (position - rb.translation());
-        rb.apply_impulse(f.clamp_length_max(m * DRIVE_MAX_ACCEL) * dt, true);
-    }
+/// The impulse over a step of `dt` s that drives a part toward its
+/// target: a spring-damper with feed-forward,
+/// `F = m a + c (v - v_b) + k (p - p_b)`, its force capped at
+/// [`DRIVE_MAX_ACCEL`] times the mass.
+pub fn drive_impulse(s: &DriveState, dt: f32) -> Vec3 {
+    let m = s.mass;
+    let (k, c) = (DRIVE_STIFFNESS * m, DRIVE_DAMPING * m);
+    let (p, v, a) = s.target;
+    let f = m * a + c * (v - s.at.1) + k * (p - s.at.0);
+    f.clamp_length_max(m * DRIVE_MAX_ACCEL) * dt
 }
 
 #[cfg(test)]
@@ -104,15 +53,21 @@ mod tests {
     use super::*;
 
     /// However abrupt the scripted path, a driven part gains at most
-    /// `DRIVE_MAX_ACCEL dt` of speed in a step.
+    /// `DRIVE_MAX_ACCEL dt` of speed in a step; a gentle one is not capped.
     #[test]
     fn the_drive_force_is_capped() {
-        let mut w = World::new(BodyPlan::default(), 0.001);
-        let g = w.part(OpponentPart::LeftGlove);
-        let p = w.rb(g).translation();
-        w.drive(g, p + Vec3::X * 0.05, Vec3::X * 50.0, Vec3::X * 1e5);
-        w.step();
-        let v = w.rb(g).linvel().length();
-        assert!(v > 0.1 && v <= DRIVE_MAX_ACCEL * 0.001 * 1.001, "{v}");
+        let s = DriveState {
+            mass: 1.5,
+            at: (Vec3::ZERO, Vec3::ZERO),
+            target: (Vec3::X * 0.05, Vec3::X * 50.0, Vec3::X * 1e5),
+        };
+        let dv = drive_impulse(&s, 0.001).length() / s.mass;
+        assert!((dv - DRIVE_MAX_ACCEL * 0.001).abs() < 1e-6, "{dv}");
+        let gentle = DriveState {
+            target: (Vec3::X * 0.001, Vec3::ZERO, Vec3::ZERO),
+            ..s
+        };
+        let dv = drive_impulse(&gentle, 0.001).length() / s.mass;
+        assert!((dv - 1600.0 * 0.001 * 0.001).abs() < 1e-7, "{dv}");
     }
 }

@@ -14,6 +14,7 @@ use crate::physics::body::{
     BodyPlan, Group, HARD_STOP_MARGIN_DEG, JointKind, OpponentPart, Seg, Segment, Shape,
 };
 use crate::physics::control::{Gains, JointState, JointTarget, pd_torque};
+use crate::physics::opponent::{DriveState, OPPONENT_MASS, drive_impulse};
 use shisen_gaze::util::math::JointAngles;
 use shisen_gaze::vision::{BodyId, Motion, Scenery};
 
@@ -252,6 +253,57 @@ fn subtrees(plan: &BodyPlan) -> Vec<Vec<Seg>> {
     subtree
 }
 
+/// Build step 5: the opponent's head and gloves, after the VH's
+/// segments. Returns their bodies in [`OpponentPart`] order.
+fn add_opponent(
+    phys: &mut PhysicsWorld,
+    plan: &BodyPlan,
+    bodies: &mut Vec<BodyInfo>,
+) -> [BodyId; 3] {
+    let positions = [
+        plan.opponent_head,
+        plan.opponent_gloves[0],
+        plan.opponent_gloves[1],
+    ];
+    let radii = [
+        plan.opponent_head_radius,
+        plan.glove_radius,
+        plan.glove_radius,
+    ];
+    OpponentPart::ALL.map(|part| {
+        let k = part.index();
+        let idx = bodies.len();
+        // Dynamic, driven by a spring-damper toward the scripted or live
+        // target (see `World::drive`): finite mass and strength, so a punch
+        // that lands transfers momentum, and an arm caught between a
+        // glove and the torso is pushed, not crushed.
+        let h = phys.insert_body(
+            RigidBodyBuilder::dynamic()
+                .translation(positions[k])
+                .gravity_scale(0.0)
+                .lock_rotations()
+                .can_sleep(false)
+                .user_data(idx as u128),
+        );
+        let c = phys.insert_collider(
+            ColliderBuilder::ball(radii[k])
+                .mass(OPPONENT_MASS[k])
+                .collision_groups(InteractionGroups::all())
+                .user_data(idx as u128),
+            Some(h),
+        );
+        bodies.push(BodyInfo {
+            name: part.name().to_string(),
+            handle: h,
+            collider: c,
+            owner: Owner::Opponent(part),
+            kinematic: false,
+            offset: Vec3::ZERO,
+        });
+        BodyId::new(idx)
+    })
+}
+
 impl World {
     /// Build the world at rest from a plan, stepping at `dt` seconds: the
     /// solver, the VH's segments, their joints, the constant inertias and
@@ -271,7 +323,7 @@ impl World {
             })
             .collect();
         let subtree = subtrees(&plan);
-        let opponent = crate::physics::opponent::add_opponent(&mut phys, &plan, &mut bodies);
+        let opponent = add_opponent(&mut phys, &plan, &mut bodies);
         World {
             phys,
             plan,
@@ -479,6 +531,26 @@ impl World {
         }
     }
 
+    /// Move a scripted body toward `position` (with the target's velocity
+    /// and acceleration): kinematic props go exactly there at the end of
+    /// the next step; the opponent's dynamic parts are pulled by the
+    /// bounded spring-damper of [`drive_impulse`].
+    pub fn drive(&mut self, body: BodyId, position: Vec3, velocity: Vec3, accel: Vec3) {
+        let h = self.info(body).handle;
+        let dt = self.dt as f32;
+        let rb = &mut self.phys.bodies[h];
+        if rb.is_kinematic() {
+            rb.set_next_kinematic_translation(position);
+            return;
+        }
+        let state = DriveState {
+            mass: rb.mass(),
+            at: (rb.translation(), rb.linvel()),
+            target: (position, velocity, accel),
+        };
+        rb.apply_impulse(drive_impulse(&state, dt), true);
+    }
+
     /// Put the VH's root (torso) at `offset` from its rest position by the
     /// end of the next step (a lunge; the joints carry the rest along).
     pub fn set_root_offset(&mut self, offset: Vec3) {
@@ -629,6 +701,20 @@ impl Scenery for World {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// However abrupt the scripted path, a driven glove gains at most
+    /// `DRIVE_MAX_ACCEL dt` of speed in a step.
+    #[test]
+    fn a_driven_glove_is_capped() {
+        let mut w = World::new(BodyPlan::default(), 0.001);
+        let g = w.part(OpponentPart::LeftGlove);
+        let p = w.rb(g).translation();
+        w.drive(g, p + Vec3::X * 0.05, Vec3::X * 50.0, Vec3::X * 1e5);
+        w.step();
+        let v = w.rb(g).linvel().length();
+        let cap = crate::physics::opponent::DRIVE_MAX_ACCEL * 0.001;
+        assert!(v > 0.1 && v <= cap * 1.001, "{v}");
+    }
 
     #[test]
     fn joint_angles_round_trip() {

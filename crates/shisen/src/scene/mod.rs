@@ -29,7 +29,7 @@ mod tests {
 
     #[test]
     fn every_shipped_scene_round_trips_through_serde() {
-        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes");
         let mut n = 0;
         for entry in std::fs::read_dir(&dir).unwrap() {
             let path = entry.unwrap().path();
