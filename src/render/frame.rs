@@ -135,8 +135,7 @@ const AXIS_LEN: f32 = 0.06;
 /// Offset of the face frame's origin (midway between the eyes at rest) from
 /// the head body's centre, in the head body's frame.
 pub fn face_offset(plan: &BodyPlan) -> Vec3 {
-    (BodyPlan::eye_centre(0) + BodyPlan::eye_centre(1)) / 2.0
-        - plan.segments[Seg::Head.index()].centre
+    BodyPlan::eyes_midpoint().as_vec3() - plan.segments[Seg::Head.index()].centre
 }
 
 impl Frame {

@@ -8,7 +8,7 @@
 //! following per M8-M9). Every 50 ms the example prints the target's
 //! direction, both eyes' yaw and the neck's yaw.
 //!
-//! Run: `cargo run --example gaze_without_physics`
+//! Run: `cargo run -p shisen-gaze --example gaze_without_physics`
 
 use glam::{DQuat, DVec2, DVec3};
 use rand::SeedableRng;
@@ -57,9 +57,8 @@ fn main() {
         let point = target(t);
         let input = GazeInput {
             point,
-            // One identity for the swing, another after the jump: a new
-            // target is what triggers a saccade.
-            // The swinging ball, then another thing to the side.
+            // One identity for the swinging ball, another for the thing
+            // to the side: a new target is what triggers a saccade.
             target: TargetId::body(BodyId::new(if t < 1.5 { 1 } else { 2 })),
             amount: Amount {
                 value: 3.0,

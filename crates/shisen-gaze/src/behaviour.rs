@@ -153,7 +153,7 @@ pub struct OpponentView<'a> {
     /// The gaze target the eyes are physically on (line of sight within
     /// 2 deg at the end of the last tick), if any.
     pub eyes_on: Option<TargetId>,
-    /// Body indices of the opponent's head, left glove, right glove.
+    /// The opponent's head, left glove and right glove.
     pub parts: [BodyId; 3],
     /// The VH's head, torso and centre-of-mass positions (threat directions).
     pub vh_points: [DVec3; 3],

@@ -258,11 +258,15 @@ impl OpponentPart {
 }
 
 /// Top of the VH's head (world y at rest).
-pub const HEAD_TOP_Y: f32 = 1.80;
+pub const HEAD_TOP_Y: f32 = HEAD_TOP_Y_M as f32;
+/// The same, in double precision (the gaze laws' frame), m.
+pub const HEAD_TOP_Y_M: f64 = 1.80;
 /// Neck pivot (base of the neck), world.
 pub const NECK_PIVOT: Vec3 = Vec3::new(0.0, 1.52, 0.0);
 /// Eye centres sit this far in front of the neck axis.
-pub const EYE_FORWARD: f32 = 0.072;
+pub const EYE_FORWARD: f32 = EYE_FORWARD_M as f32;
+/// The same, in double precision, m.
+pub const EYE_FORWARD_M: f64 = 0.072;
 /// Upper arm length (shoulder to elbow), metres.
 pub const UPPER_ARM_LEN: f32 = shisen_gaze::anatomy::arm::UPPER as f32;
 /// Forearm length (elbow to glove centre), metres.
@@ -282,7 +286,11 @@ impl BodyPlan {
     /// The midpoint of the VH's eyes at rest (the cyclopean eye), world:
     /// where gaze targets at eye height are measured from.
     pub fn eyes_midpoint() -> DVec3 {
-        ((Self::eye_centre(0) + Self::eye_centre(1)) / 2.0).as_dvec3()
+        DVec3::new(
+            0.0,
+            HEAD_TOP_Y_M - shisen_gaze::anatomy::eye::BELOW_TOP,
+            EYE_FORWARD_M,
+        )
     }
 
     /// Shoulder pivot, left (`side = 0`, +X) or right.

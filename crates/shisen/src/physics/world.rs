@@ -309,6 +309,11 @@ impl World {
     /// solver, the VH's segments, their joints, the constant inertias and
     /// subtrees, the opponent's parts.
     pub fn new(plan: BodyPlan, dt: f64) -> Self {
+        assert_eq!(
+            plan.segments.len(),
+            Seg::ALL.len(),
+            "a body plan has one segment per Seg, in order"
+        );
         let mut phys = empty_world(dt);
         let mut bodies = Vec::new();
         add_segments(&mut phys, &plan, &mut bodies);

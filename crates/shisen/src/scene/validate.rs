@@ -53,7 +53,12 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
     }
     let mut names: Vec<&str> = OpponentPart::ALL.map(OpponentPart::name).to_vec();
     for (i, b) in scene.bodies.iter().enumerate() {
-        if names.contains(&b.name.as_str()) || b.name.starts_with("vh_") || b.name == "point" {
+        // `point` and `opponent_body` name gaze targets that are no body
+        // (a fixed point, the opponent's trunk).
+        if names.contains(&b.name.as_str())
+            || b.name.starts_with("vh_")
+            || ["point", "opponent_body"].contains(&b.name.as_str())
+        {
             return Err(err(
                 &format!("\"{}\"", b.name),
                 format!("bodies[{i}].name"),

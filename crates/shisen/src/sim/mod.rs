@@ -2,7 +2,8 @@
 //! in simulation time. [`Sim::step`] runs the pipeline of gaze.md 1 as
 //! named stages: timeline -> sense (vision) -> decide (behaviour) ->
 //! attend (attention) -> move the gaze (oculomotor) -> face -> arms ->
-//! actuate and integrate (PD joints, physics) -> record a [`Sample`].
+//! actuate and integrate (PD joints, physics) -> resolve contacts (blows,
+//! a stopped punch's recoil) -> record a [`Sample`].
 //!
 //! The static description lives in a [`Model`]; `Sim` holds only what
 //! evolves.

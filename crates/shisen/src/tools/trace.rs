@@ -11,76 +11,108 @@ use std::io::{self, Write};
 use crate::sim::Sample;
 use crate::sim::blows::BlowKind;
 
-type Cell = fn(&Sample, &mut String);
+/// How a column's cell is read from a sample.
+#[derive(Clone, Copy)]
+pub enum Cell {
+    /// A number, written with this many decimals.
+    Num(fn(&Sample) -> f64, usize),
+    /// Text.
+    Text(fn(&Sample, &mut String)),
+}
+
+impl Cell {
+    /// Write the cell of sample `s`.
+    pub fn write(&self, s: &Sample, out: &mut String) {
+        match self {
+            // Fixed precision keeps traces byte-comparable and diff-friendly.
+            Cell::Num(get, decimals) => {
+                let _ = write!(out, "{:.*}", decimals, get(s));
+            }
+            Cell::Text(put) => put(s, out),
+        }
+    }
+}
 
 fn deg(x: f64) -> f64 {
     x.to_degrees()
 }
 
-fn num(out: &mut String, x: f64) {
-    // Fixed precision keeps traces byte-comparable and diff-friendly.
-    let _ = write!(out, "{x:.4}");
+fn flag(b: bool) -> f64 {
+    if b { 1.0 } else { 0.0 }
 }
 
-/// (name, writer) for every column, in order.
-const COLUMNS: &[(&str, Cell)] = &[
-    ("t", |s, o| {
-        let _ = write!(o, "{:.3}", s.t);
-    }),
-    ("action", |s, o| {
-        o.push_str(&format!("{:?}", s.action).to_lowercase())
-    }),
-    ("action_target", |s, o| {
-        o.push_str(s.action_target.as_deref().unwrap_or(""))
-    }),
-    ("gaze_target", |s, o| o.push_str(&s.gaze_target)),
-    ("gaze_x", |s, o| num(o, s.gaze_point.x)),
-    ("gaze_y", |s, o| num(o, s.gaze_point.y)),
-    ("gaze_z", |s, o| num(o, s.gaze_point.z)),
-    ("source", |s, o| o.push_str(s.source.as_str())),
-    ("amount", |s, o| num(o, s.amount)),
-    ("eye_l_yaw_tgt", |s, o| num(o, deg(s.eye_target[0].x))),
-    ("eye_l_pitch_tgt", |s, o| num(o, deg(s.eye_target[0].y))),
-    ("eye_l_yaw", |s, o| num(o, deg(s.eye_actual[0].x))),
-    ("eye_l_pitch", |s, o| num(o, deg(s.eye_actual[0].y))),
-    ("eye_r_yaw_tgt", |s, o| num(o, deg(s.eye_target[1].x))),
-    ("eye_r_pitch_tgt", |s, o| num(o, deg(s.eye_target[1].y))),
-    ("eye_r_yaw", |s, o| num(o, deg(s.eye_actual[1].x))),
-    ("eye_r_pitch", |s, o| num(o, deg(s.eye_actual[1].y))),
-    ("los_err_l", |s, o| num(o, deg(s.los_error[0]))),
-    ("los_err_r", |s, o| num(o, deg(s.los_error[1]))),
-    ("neck_yaw_tgt", |s, o| num(o, deg(s.neck_target.yaw))),
-    ("neck_pitch_tgt", |s, o| num(o, deg(s.neck_target.pitch))),
-    ("neck_roll_tgt", |s, o| num(o, deg(s.neck_target.roll))),
-    ("neck_yaw", |s, o| num(o, deg(s.neck_actual.yaw))),
-    ("neck_pitch", |s, o| num(o, deg(s.neck_actual.pitch))),
-    ("neck_roll", |s, o| num(o, deg(s.neck_actual.roll))),
-    ("head_yaw", |s, o| num(o, deg(s.head_world.x))),
-    ("head_pitch", |s, o| num(o, deg(s.head_world.y))),
-    ("punching", |s, o| {
-        o.push_str(if s.punching { "1" } else { "0" })
-    }),
-    ("head_hit", |s, o| {
-        o.push_str(if s.head_hit { "1" } else { "0" })
-    }),
-    ("blows", |s, o| {
-        for (i, b) in s.blows.iter().enumerate() {
-            let kind = match b.kind {
-                BlowKind::Hit => "hit",
-                BlowKind::Block => "block",
-            };
-            let sep = if i > 0 { ";" } else { "" };
-            let _ = write!(o, "{sep}{kind}:{}:{}:{:.2}", b.by.name(), b.part, b.impulse);
-        }
-    }),
-    ("emotion", |s, o| {
-        let _ = write!(o, "{:?}", s.emotion);
-    }),
-    ("blink", |s, o| num(o, s.blink)),
-    ("reset", |s, o| o.push_str(if s.reset { "1" } else { "0" })),
-    ("salient_1", |s, o| top(o, s, 0)),
-    ("salient_2", |s, o| top(o, s, 1)),
-    ("salient_3", |s, o| top(o, s, 2)),
+/// A number with the traces' usual precision.
+const fn num(get: fn(&Sample) -> f64) -> Cell {
+    Cell::Num(get, 4)
+}
+
+/// A 0/1 flag.
+const fn yes(get: fn(&Sample) -> f64) -> Cell {
+    Cell::Num(get, 0)
+}
+
+/// (name, cell) for every column, in order: the one home of the trace's
+/// columns (the CSV and the Python bindings' arrays both read it).
+pub const COLUMNS: &[(&str, Cell)] = &[
+    ("t", Cell::Num(|s| s.t, 3)),
+    (
+        "action",
+        Cell::Text(|s, o| o.push_str(&format!("{:?}", s.action).to_lowercase())),
+    ),
+    (
+        "action_target",
+        Cell::Text(|s, o| o.push_str(s.action_target.as_deref().unwrap_or(""))),
+    ),
+    ("gaze_target", Cell::Text(|s, o| o.push_str(&s.gaze_target))),
+    ("gaze_x", num(|s| s.gaze_point.x)),
+    ("gaze_y", num(|s| s.gaze_point.y)),
+    ("gaze_z", num(|s| s.gaze_point.z)),
+    ("source", Cell::Text(|s, o| o.push_str(s.source.as_str()))),
+    ("amount", num(|s| s.amount)),
+    ("eye_l_yaw_tgt", num(|s| deg(s.eye_target[0].x))),
+    ("eye_l_pitch_tgt", num(|s| deg(s.eye_target[0].y))),
+    ("eye_l_yaw", num(|s| deg(s.eye_actual[0].x))),
+    ("eye_l_pitch", num(|s| deg(s.eye_actual[0].y))),
+    ("eye_r_yaw_tgt", num(|s| deg(s.eye_target[1].x))),
+    ("eye_r_pitch_tgt", num(|s| deg(s.eye_target[1].y))),
+    ("eye_r_yaw", num(|s| deg(s.eye_actual[1].x))),
+    ("eye_r_pitch", num(|s| deg(s.eye_actual[1].y))),
+    ("los_err_l", num(|s| deg(s.los_error[0]))),
+    ("los_err_r", num(|s| deg(s.los_error[1]))),
+    ("neck_yaw_tgt", num(|s| deg(s.neck_target.yaw))),
+    ("neck_pitch_tgt", num(|s| deg(s.neck_target.pitch))),
+    ("neck_roll_tgt", num(|s| deg(s.neck_target.roll))),
+    ("neck_yaw", num(|s| deg(s.neck_actual.yaw))),
+    ("neck_pitch", num(|s| deg(s.neck_actual.pitch))),
+    ("neck_roll", num(|s| deg(s.neck_actual.roll))),
+    ("head_yaw", num(|s| deg(s.head_world.x))),
+    ("head_pitch", num(|s| deg(s.head_world.y))),
+    ("punching", yes(|s| flag(s.punching))),
+    ("head_hit", yes(|s| flag(s.head_hit))),
+    (
+        "blows",
+        Cell::Text(|s, o| {
+            for (i, b) in s.blows.iter().enumerate() {
+                let kind = match b.kind {
+                    BlowKind::Hit => "hit",
+                    BlowKind::Block => "block",
+                };
+                let sep = if i > 0 { ";" } else { "" };
+                let _ = write!(o, "{sep}{kind}:{}:{}:{:.2}", b.by.name(), b.part, b.impulse);
+            }
+        }),
+    ),
+    (
+        "emotion",
+        Cell::Text(|s, o| {
+            let _ = write!(o, "{:?}", s.emotion);
+        }),
+    ),
+    ("blink", num(|s| s.blink)),
+    ("reset", yes(|s| flag(s.reset))),
+    ("salient_1", Cell::Text(|s, o| top(o, s, 0))),
+    ("salient_2", Cell::Text(|s, o| top(o, s, 1))),
+    ("salient_3", Cell::Text(|s, o| top(o, s, 2))),
 ];
 
 fn top(o: &mut String, s: &Sample, i: usize) {
@@ -105,7 +137,7 @@ pub fn cells(s: &Sample) -> Vec<String> {
         .iter()
         .map(|(_, cell)| {
             let mut out = String::new();
-            cell(s, &mut out);
+            cell.write(s, &mut out);
             out
         })
         .collect()
@@ -147,7 +179,7 @@ impl<W: Write> TraceWriter<W> {
         if self.n.is_multiple_of(self.every) {
             for ((_, cell), out) in COLUMNS.iter().zip(&mut self.cells) {
                 out.clear();
-                cell(s, out);
+                cell.write(s, out);
             }
             self.out.write_record(&self.cells).map_err(csv_error)?;
         }
