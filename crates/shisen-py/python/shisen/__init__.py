@@ -1,0 +1,40 @@
+"""shisen (視線, "line of sight") for Python.
+
+A physically simulated virtual human (VH) that boxes and looks where a
+person would. From Python you can:
+
+* load, validate and edit scenes: ``Scene.load(path)``, ``Scene.from_str(text)``
+  (a bad scene raises :class:`SceneError` naming its file, line, column and
+  field, as the command line does);
+* run them headless and get every trace column as a numpy array:
+  ``Scene.run()`` (or a pandas DataFrame: :func:`to_frame`);
+* step a :class:`Sim` yourself, drive the opponent (``move_part``,
+  ``punch``) and read samples, positions and the blow tally;
+* run scene files as ``shisen test`` does (:func:`test`) and the fidelity
+  battery (:func:`fidelity`);
+* train a policy as the VH's opponent: :mod:`shisen.env` (Gymnasium).
+
+The interpreter lock is released while a simulation steps, so threads
+stepping different simulations run in parallel.
+"""
+
+from ._shisen import DT, Scene, SceneError, Sim, columns, fidelity, test
+
+__all__ = [
+    "DT",
+    "Scene",
+    "SceneError",
+    "Sim",
+    "columns",
+    "fidelity",
+    "test",
+    "to_frame",
+]
+
+
+def to_frame(samples):
+    """The columns of ``Scene.run`` / ``Sim.run`` as a pandas DataFrame
+    (needs pandas), indexed by time ``t``."""
+    import pandas as pd
+
+    return pd.DataFrame(samples, columns=columns()).set_index("t")
