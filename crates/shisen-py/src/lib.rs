@@ -115,6 +115,26 @@ impl Scene {
         self.inner.scene.to_ron()
     }
 
+    /// A copy with numbers at dotted field paths set (as a study varies
+    /// them): `scene.edit({"vh.personality.a_face": 1.2, "gains.neck.kp":
+    /// 40.0})`, and the seed if given; validated like a file. Raises
+    /// `ValueError` naming the field, or `SceneError` for a value the scene
+    /// refuses.
+    #[pyo3(signature = (fields, seed = None))]
+    fn edit(
+        &self,
+        py: Python<'_>,
+        fields: std::collections::BTreeMap<String, f64>,
+        seed: Option<u64>,
+    ) -> PyResult<Scene> {
+        let label = format!("{} (edited)", self.inner.source);
+        let fields: Vec<(&str, f64)> = fields.iter().map(|(f, x)| (f.as_str(), *x)).collect();
+        let inner = py
+            .detach(|| shisen::tools::study::edit_scene(&self.inner, &fields, seed, &label))
+            .map_err(PyValueError::new_err)?;
+        Ok(Scene { inner })
+    }
+
     /// A simulation of the scene at its start, with the scene's seed or `seed`.
     #[pyo3(signature = (seed = None))]
     fn sim(&self, seed: Option<u64>) -> Sim {

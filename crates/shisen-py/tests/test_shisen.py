@@ -35,6 +35,18 @@ def test_a_bad_scene_names_file_line_column_and_field():
         shisen.Scene.load(SCENES / "no_such_scene.ron")
 
 
+def test_a_scene_is_edited_by_field_paths_and_validated():
+    base = shisen.Scene.default()
+    edited = base.edit({"vh.personality.a_face": 2.5}, seed=11)
+    assert edited.seed == 11
+    assert "a_face: 2.5" in edited.to_ron()
+    assert "a_face: 2.5" not in base.to_ron()
+    with pytest.raises(ValueError, match="no_such_field"):
+        base.edit({"vh.no_such_field": 1.0})
+    with pytest.raises(ValueError):
+        base.edit({"duration": -1.0})
+
+
 def test_run_gives_every_trace_column_as_arrays():
     cols = shisen.Scene.load(SCENES / "look_sequence.ron").run(duration=0.5)
     assert list(cols) == shisen.columns()

@@ -249,27 +249,14 @@ impl LoadedStudy {
     /// The scene of run `k`, validated like a file.
     pub fn scene(&self, k: usize) -> Result<LoadedScene, String> {
         let (values, seed) = &self.runs[k];
-        let mut base = self.base.scene.clone();
-        // Vary gains through the scene's inline gains.
-        base.gains = Some(self.base.gains.clone());
-        base.gains_file = None;
-        let mut v = scene_value(&base);
-        for (f, x) in self.fields.iter().zip(values) {
-            set_field(&mut v, f, *x)?;
-        }
-        let mut scene: Scene = serde_json::from_value(v).map_err(|e| format!("run {k}: {e}"))?;
-        scene.seed = *seed;
+        let fields: Vec<(&str, f64)> = self
+            .fields
+            .iter()
+            .map(String::as_str)
+            .zip(values.iter().copied())
+            .collect();
         let label = format!("{} run {k}", self.file.display());
-        let scene = Scene::parse(&scene.to_ron(), Path::new(&label)).map_err(|e| e.to_string())?;
-        Ok(LoadedScene {
-            gains: scene
-                .gains
-                .clone()
-                .unwrap_or_else(|| self.base.gains.clone()),
-            scene,
-            face: self.base.face.clone(),
-            source: label,
-        })
+        edit_scene(&self.base, &fields, Some(*seed), &label)
     }
 
     /// Run this `shard` of the study on `jobs` threads into `results`
@@ -312,6 +299,36 @@ impl LoadedStudy {
         bar.finish_and_clear();
         Ok(todo.len())
     }
+}
+
+/// `base` with the numbers at dotted field paths (`vh.personality.a_face`,
+/// `timeline[2].do.speed`) set, and its seed if given, validated like a
+/// file (`label` names it in errors). Gains go inline, so they can be
+/// varied too (`gains.neck.kp`).
+pub fn edit_scene(
+    base: &LoadedScene,
+    fields: &[(&str, f64)],
+    seed: Option<u64>,
+    label: &str,
+) -> Result<LoadedScene, String> {
+    let mut scene = base.scene.clone();
+    scene.gains = Some(base.gains.clone());
+    scene.gains_file = None;
+    let mut v = scene_value(&scene);
+    for (f, x) in fields {
+        set_field(&mut v, f, *x).map_err(|e| format!("{label}: {e}"))?;
+    }
+    let mut scene: Scene = serde_json::from_value(v).map_err(|e| format!("{label}: {e}"))?;
+    if let Some(seed) = seed {
+        scene.seed = seed;
+    }
+    let scene = Scene::parse(&scene.to_ron(), Path::new(label)).map_err(|e| e.to_string())?;
+    Ok(LoadedScene {
+        gains: scene.gains.clone().unwrap_or_else(|| base.gains.clone()),
+        scene,
+        face: base.face.clone(),
+        source: label.to_string(),
+    })
 }
 
 /// The scene as a JSON value (the field paths of its file).
