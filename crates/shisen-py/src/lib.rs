@@ -2,7 +2,7 @@
 //! the same errors as the command line (as `shisen.SceneError` with the
 //! file, line, column and field), run them headless, step a simulation and
 //! read its samples as numpy arrays with no CSV in between, run scene files
-//! as `shisen test` does and the fidelity battery, and drive the opponent
+//! as `shisen test` does, studies and the fidelity battery, and drive the opponent
 //! from Python (the Gymnasium environment in `shisen.env` is built on it).
 //!
 //! The interpreter lock is released while the simulation steps, so Python
@@ -456,21 +456,77 @@ fn test<'py>(
             }
             Ok(report) => {
                 d.set_item("error", py.None())?;
-                let mut verdicts = Vec::new();
-                for v in &report.verdicts {
-                    let vd = PyDict::new(py);
-                    vd.set_item("what", &v.what)?;
-                    vd.set_item("measured", &v.measured)?;
-                    vd.set_item("value", v.value)?;
-                    vd.set_item("pass", v.pass)?;
-                    verdicts.push(vd);
-                }
-                d.set_item("verdicts", verdicts)?;
+                d.set_item("verdicts", verdicts(py, &report.verdicts)?)?;
             }
         }
         out.push(d);
     }
     Ok(out)
+}
+
+/// Run a study file (`shisen study`): every run's scene is built and
+/// validated first, then the runs go in parallel on `jobs` threads (0: one
+/// per core). One dict per run: `run`, `seed`, each varied field by its
+/// path, `passed`, `resets`, `saccades`, `head_moves`, and `verdicts` (as
+/// in `test`). `shisen.study_frame` turns it into a DataFrame.
+#[pyfunction]
+#[pyo3(signature = (path, jobs = 0))]
+fn study<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    use rayon::prelude::*;
+    use shisen::tools::study::LoadedStudy;
+    let loaded = py
+        .detach(|| LoadedStudy::load(&path))
+        .map_err(|e| scene_error(py, e))?;
+    let scenes: Vec<LoadedScene> = py
+        .detach(|| {
+            (0..loaded.runs.len())
+                .map(|k| loaded.scene(k))
+                .collect::<Result<_, _>>()
+        })
+        .map_err(PyValueError::new_err)?;
+    let reports = py.detach(|| {
+        shisen::tools::parallel::pool(jobs).install(|| {
+            scenes
+                .par_iter()
+                .map(|s| shisen::tools::headless::run(s, None, None, 1).map_err(|e| e.to_string()))
+                .collect::<Vec<_>>()
+        })
+    });
+    let mut out = Vec::new();
+    for (k, report) in reports.into_iter().enumerate() {
+        let report = report.map_err(PyValueError::new_err)?;
+        let (values, seed) = &loaded.runs[k];
+        let d = PyDict::new(py);
+        d.set_item("run", k)?;
+        d.set_item("seed", seed)?;
+        for (f, x) in loaded.fields.iter().zip(values) {
+            d.set_item(f, x)?;
+        }
+        d.set_item("passed", report.passed())?;
+        d.set_item("resets", report.resets)?;
+        d.set_item("saccades", report.saccades)?;
+        d.set_item("head_moves", report.head_moves)?;
+        d.set_item("verdicts", verdicts(py, &report.verdicts)?)?;
+        out.push(d);
+    }
+    Ok(out)
+}
+
+/// Expectations' verdicts as dicts.
+fn verdicts<'py>(
+    py: Python<'py>,
+    list: &[shisen::sim::expect::Verdict],
+) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    list.iter()
+        .map(|v| {
+            let vd = PyDict::new(py);
+            vd.set_item("what", &v.what)?;
+            vd.set_item("measured", &v.measured)?;
+            vd.set_item("value", v.value)?;
+            vd.set_item("pass", v.pass)?;
+            Ok(vd)
+        })
+        .collect()
 }
 
 /// The fidelity battery (`shisen fidelity`) on the default scene's VH: one
@@ -510,6 +566,7 @@ fn _shisen(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add_function(wrap_pyfunction!(test, m)?)?;
     m.add_function(wrap_pyfunction!(fidelity, m)?)?;
+    m.add_function(wrap_pyfunction!(study, m)?)?;
     m.add_function(wrap_pyfunction!(columns, m)?)?;
     m.add("DT", shisen::DT)?;
     Ok(())

@@ -111,6 +111,24 @@ def test_scene_files_run_as_shisen_test_does():
     assert all(r["verdicts"] for r in runs)
 
 
+def test_a_study_runs_as_shisen_study_does(tmp_path):
+    (tmp_path / "s.ron").write_text(
+        'Study(scene: "%s", vary: [(field: "vh.personality.a_face", values: [0.5, 2.0])], seeds: Range(from: 1, to: 2))'
+        % (SCENES / "wave.ron")
+    )
+    runs = shisen.study(tmp_path / "s.ron", jobs=2)
+    assert len(runs) == 4
+    assert sorted({r["vh.personality.a_face"] for r in runs}) == [0.5, 2.0]
+    assert sorted({r["seed"] for r in runs}) == [1, 2]
+    assert all(r["verdicts"] for r in runs)
+    pd = pytest.importorskip("pandas")
+    df = shisen.study_frame(tmp_path / "s.ron", jobs=1)
+    assert len(df) == 4 and "expect0" in df.columns
+    with pytest.raises(shisen.SceneError):
+        (tmp_path / "bad.ron").write_text('Study(scene: "x.ron", vary: [], seeds: Bogus)')
+        shisen.study(tmp_path / "bad.ron")
+
+
 def test_to_frame_gives_a_dataframe():
     pd = pytest.importorskip("pandas")
     df = shisen.to_frame(shisen.Scene.load(SCENES / "wave.ron").run(duration=0.2))

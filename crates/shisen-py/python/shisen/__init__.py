@@ -10,15 +10,16 @@ person would. From Python you can:
   ``Scene.run()`` (or a pandas DataFrame: :func:`to_frame`);
 * step a :class:`Sim` yourself, drive the opponent (``move_part``,
   ``punch``) and read samples, positions and the blow tally;
-* run scene files as ``shisen test`` does (:func:`test`) and the fidelity
-  battery (:func:`fidelity`);
+* run scene files as ``shisen test`` does (:func:`test`), studies
+  (:func:`study`, :func:`study_frame`) and the fidelity battery
+  (:func:`fidelity`);
 * train a policy as the VH's opponent: :mod:`shisen.env` (Gymnasium).
 
 The interpreter lock is released while a simulation steps, so threads
 stepping different simulations run in parallel.
 """
 
-from ._shisen import DT, Scene, SceneError, Sim, columns, fidelity, test
+from ._shisen import DT, Scene, SceneError, Sim, columns, fidelity, study, test
 
 __all__ = [
     "DT",
@@ -27,6 +28,8 @@ __all__ = [
     "Sim",
     "columns",
     "fidelity",
+    "study",
+    "study_frame",
     "test",
     "to_frame",
 ]
@@ -38,3 +41,18 @@ def to_frame(samples):
     import pandas as pd
 
     return pd.DataFrame(samples, columns=columns()).set_index("t")
+
+
+def study_frame(path, jobs=0):
+    """A study file's runs (:func:`study`) as a pandas DataFrame, one row per
+    run, each expectation's measured value as ``expectN`` (needs pandas)."""
+    import pandas as pd
+
+    rows = []
+    for r in study(path, jobs):
+        row = {k: v for k, v in r.items() if k != "verdicts"}
+        for i, v in enumerate(r["verdicts"]):
+            row[f"expect{i}"] = v["value"]
+            row[f"expect{i}_pass"] = v["pass"]
+        rows.append(row)
+    return pd.DataFrame(rows).set_index("run")
