@@ -239,7 +239,7 @@ impl Attention {
             Some(cur) if !same_target(cur, &winner) => {
                 let cur_valid = match cur.source {
                     Source::BottomUp => cur.body.is_some_and(|b| in_view[b.index()]),
-                    Source::TopDown => cur.body == top_down.body && cur.spot == top_down.spot,
+                    Source::TopDown => top_down.aims_at(cur.body, cur.spot),
                     Source::Override => false,
                 };
                 let cur_amount = match cur.source {

@@ -8,7 +8,7 @@ use rand_distr::{Distribution, Normal};
 use serde::{Deserialize, Serialize};
 
 use crate::personality::Personality;
-use crate::target::{BodyId, Source, Spot, TargetId};
+use crate::target::{BodyId, Spot, TargetId};
 use crate::util::math::min_jerk;
 use crate::vision::Seen;
 
@@ -125,13 +125,10 @@ pub struct TopDown {
 }
 
 impl TopDown {
-    /// The request's identity, as chosen by `source`.
-    pub fn id(&self, source: Source) -> TargetId {
-        TargetId {
-            source,
-            body: self.body,
-            spot: self.spot,
-        }
+    /// Whether a target on `body` at `spot` is the one this request asks
+    /// for (whoever chose it).
+    pub fn aims_at(&self, body: Option<BodyId>, spot: Spot) -> bool {
+        self.body == body && self.spot == spot
     }
 }
 
@@ -364,7 +361,7 @@ impl Behaviour {
                 if looked.is_none()
                     && view
                         .eyes_on
-                        .is_some_and(|on| on.same_place(&target.id(Source::TopDown)))
+                        .is_some_and(|on| target.aims_at(on.body, on.spot))
                 {
                     looked = Some(t);
                 }

@@ -90,9 +90,4 @@ impl TargetId {
             spot: Spot::Centre,
         }
     }
-
-    /// The same thing looked at, whoever chose it (the source aside).
-    pub fn same_place(&self, other: &TargetId) -> bool {
-        self.body == other.body && self.spot == other.spot
-    }
 }

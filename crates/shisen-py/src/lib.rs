@@ -192,9 +192,9 @@ impl Columns {
                     self.numbers[n].push(get(s));
                     n += 1;
                 }
-                Cell::Text(put) => {
+                Cell::Text(_) => {
                     let mut out = String::new();
-                    put(s, &mut out);
+                    cell.write(s, &mut out);
                     self.texts[t].push(out);
                     t += 1;
                 }
@@ -262,17 +262,34 @@ impl Sim {
     }
 }
 
+impl Sim {
+    /// Schedule `action` now, checked by the scene format's own rules (the
+    /// ranges and messages of a scene file's timeline): the event goes
+    /// through the same validating reader.
+    fn push(&mut self, py: Python<'_>, action: Action) -> PyResult<()> {
+        let event = Event {
+            at: self.inner.time(),
+            action,
+        };
+        let text = ron::to_string(&event).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let event: Event = shisen::util::ron::parse_ron(&text, Path::new("<python event>"))
+            .map_err(|e| scene_error(py, e))?;
+        self.inner.push_event(event);
+        Ok(())
+    }
+}
+
 fn vec3(v: DVec3) -> (f64, f64, f64) {
     (v.x, v.y, v.z)
 }
 
-fn part_of(name: &str) -> PyResult<Part> {
-    Ok(match name {
+fn part_of(name: &str) -> Part {
+    match name {
         "head" => Part::Head,
         "left_glove" => Part::LeftGlove,
         "right_glove" => Part::RightGlove,
         other => Part::Body(other.to_string()),
-    })
+    }
 }
 
 #[pymethods]
@@ -322,9 +339,9 @@ impl Sim {
         for (name, cell) in COLUMNS {
             match cell {
                 Cell::Num(get, _) => d.set_item(name, get(s))?,
-                Cell::Text(put) => {
+                Cell::Text(_) => {
                     let mut out = String::new();
-                    put(s, &mut out);
+                    cell.write(s, &mut out);
                     d.set_item(name, out)?
                 }
             }
@@ -363,35 +380,33 @@ impl Sim {
     /// Move a part of the opponent (`head`, `left_glove`, `right_glove`)
     /// or a kinematic prop (by name) to `to` over `duration` s, starting
     /// now: the timeline event live input uses, so it replays exactly.
-    fn move_part(&mut self, part: &str, to: (f64, f64, f64), duration: f64) -> PyResult<()> {
-        if !(duration.is_finite() && duration > 0.0) {
+    fn move_part(
+        &mut self,
+        py: Python<'_>,
+        part: &str,
+        to: (f64, f64, f64),
+        duration: f64,
+    ) -> PyResult<()> {
+        let part = part_of(part);
+        if let Part::Body(name) = &part
+            && !self
+                .inner
+                .world
+                .body_named(name)
+                .is_some_and(|b| self.inner.world.info(b).kinematic)
+        {
             return Err(PyValueError::new_err(format!(
-                "duration: must be a positive number of seconds, got {duration}"
+                "part: no opponent part or kinematic body named `{name}`"
             )));
         }
         let to = DVec3::new(to.0, to.1, to.2);
-        if !to.is_finite() {
-            return Err(PyValueError::new_err("to: must be finite"));
-        }
-        let part = part_of(part)?;
-        if let Part::Body(name) = &part
-            && self.inner.world.body_named(name).is_none()
-        {
-            return Err(PyValueError::new_err(format!(
-                "part: no body named `{name}`"
-            )));
-        }
-        self.inner.push_event(Event {
-            at: self.inner.time(),
-            action: Action::Move { part, to, duration },
-        });
-        Ok(())
+        self.push(py, Action::Move { part, to, duration })
     }
 
     /// Throw a punch with the opponent's `hand` (`left`, `right`) at the
     /// VH's `head` or `body`, peak glove speed `speed` m/s, starting now.
     #[pyo3(signature = (hand, target = "head", speed = 7.0))]
-    fn punch(&mut self, hand: &str, target: &str, speed: f64) -> PyResult<()> {
+    fn punch(&mut self, py: Python<'_>, hand: &str, target: &str, speed: f64) -> PyResult<()> {
         let hand = match hand {
             "left" => Hand::Left,
             "right" => Hand::Right,
@@ -410,21 +425,15 @@ impl Sim {
                 )));
             }
         };
-        if !(speed.is_finite() && speed > 0.0 && speed <= 20.0) {
-            return Err(PyValueError::new_err(format!(
-                "speed: 0-20 m/s, got {speed}"
-            )));
-        }
-        self.inner.push_event(Event {
-            at: self.inner.time(),
-            action: Action::Punch {
+        self.push(
+            py,
+            Action::Punch {
                 hand,
                 target,
                 speed,
                 through: None,
             },
-        });
-        Ok(())
+        )
     }
 }
 

@@ -83,8 +83,13 @@ def test_sim_steps_and_the_opponent_can_be_driven():
     assert t["opponent_hits"] + t["opponent_blocked"] + t["opponent_guarded"] >= 1
     with pytest.raises(ValueError):
         sim.punch("middle")
-    with pytest.raises(ValueError):
+    with pytest.raises(shisen.SceneError) as e:
         sim.move_part("left_glove", (0.0, 1.5, 0.5), -1.0)
+    assert "duration" in e.value.field
+    with pytest.raises(shisen.SceneError):
+        sim.punch("left", "head", float("nan"))
+    with pytest.raises(ValueError):
+        sim.move_part("no_such_prop", (0.0, 1.5, 0.5), 0.5)
 
 
 def test_threads_step_simulations_side_by_side():

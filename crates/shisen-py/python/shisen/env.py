@@ -57,8 +57,10 @@ class BoxingEnv(gym.Env):
             self.scene = Scene.default()
         else:
             self.scene = Scene.load(scene)
-        if not control_dt > 0 or not episode_seconds > 0:
-            raise ValueError("control_dt and episode_seconds must be positive")
+        if not 0.001 <= control_dt <= 1.0:
+            raise ValueError(f"control_dt: 0.001-1 s (one tick to a second), got {control_dt}")
+        if not 0.0 < episode_seconds <= 3600.0:
+            raise ValueError(f"episode_seconds: 0-3600 s, got {episode_seconds}")
         self.control_dt = control_dt
         self.ticks = max(1, round(control_dt / 0.001))
         self.episode_seconds = episode_seconds
