@@ -21,6 +21,7 @@ pub mod mesh;
 pub mod model;
 pub mod muscle;
 pub mod params;
+pub mod reflex;
 pub mod rig;
 pub mod script;
 pub mod spread;

@@ -4,6 +4,7 @@ use super::blink::BlinkProcess;
 use super::emotion::{Activation, AuLevels, MuscleId, Side, emotion_activation};
 use super::mesh::{HeadMesh, MeshParams};
 use super::params::FaceParams;
+use super::reflex::ReflexState;
 use super::rig::Rig;
 use super::tables::{Emotion, MuscleKind};
 use super::timing::{OffsetGroup, Pattern, Speed, Transition, transition_duration};
@@ -73,6 +74,8 @@ pub struct FaceState {
     /// The VH is busy sparring (guarding or attacking): blinks come less
     /// often ([`super::params::BlinkParams::engaged_interval_scale`]).
     pub engaged: bool,
+    /// Reflex blinks and the wince (F13).
+    pub reflex: ReflexState,
 }
 
 impl Default for FaceState {
@@ -87,6 +90,7 @@ impl Default for FaceState {
             eye_pitch: [0.0; 2],
             offset_group: OffsetGroup::One,
             engaged: false,
+            reflex: ReflexState::default(),
         }
     }
 }
@@ -124,6 +128,17 @@ impl FaceState {
             .gaze_shift(&face.params.blink, amplitude_deg, rng)
     }
 
+    /// A blow of `impulse` N s struck the head: a reflex blink and a wince
+    /// follow (F13).
+    pub fn struck(&mut self, face: &Face, impulse: f64) {
+        self.reflex.struck(&face.params.reflex, impulse);
+    }
+
+    /// A glove is seen closing on the eyes: a reflex blink follows.
+    pub fn threat(&mut self, face: &Face) {
+        self.reflex.threat(&face.params.reflex);
+    }
+
     /// Advance by `dt` seconds and recompose [`FaceState::activation`]:
     /// transition value + direct AUs; both palpebral parts then get the
     /// lid-follow contraction for the eye pitch, and the upper one the blink:
@@ -143,10 +158,16 @@ impl FaceState {
         let arousal = self.emotion.arousal() * f64::from(self.intensity);
         let scale = situation / (1.0 + bp.arousal_gain * arousal);
         self.blink.step(bp, dt, allowed, scale, rng);
+        if self.reflex.step(&face.params.reflex, dt) && self.blink.blink_time.is_none() {
+            self.blink.start_blink();
+        }
         let mut a = self
             .transition
             .value()
             .add(&self.au.activation(&face.params));
+        if let Some(w) = self.reflex.activation(&face.params) {
+            a = a.add(&w);
+        }
         let b = self.blink.closure(bp) as f32;
         for (e, side) in [Side::Left, Side::Right].into_iter().enumerate() {
             let pitch = self.eye_pitch[e];

@@ -187,6 +187,9 @@ pub struct FaceParams {
     /// How the lips hold together (defaults if absent).
     #[serde(default)]
     pub lips: LipParams,
+    /// Reflex blinks and the wince at a blow (defaults if absent).
+    #[serde(default)]
+    pub reflex: crate::reflex::ReflexParams,
 }
 
 /// How the lips hold together over an opening jaw (O1,

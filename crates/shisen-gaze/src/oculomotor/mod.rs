@@ -178,6 +178,9 @@ struct AimNow {
     new_target: bool,
     /// The aim jumped to a target it had fallen behind (H3).
     catch_up: bool,
+    /// The eyes have been off the target, as vision sees it, long enough
+    /// for a corrective saccade (H7).
+    corrective: bool,
     /// The inverse of the head's orientation as the vestibular signal reports it.
     felt_inv: DQuat,
     /// The head's angular velocity as reported, world.
@@ -312,6 +315,21 @@ impl Oculomotor {
             _ => [DVec2::ZERO; 2],
         };
         self.prev_goal = Some(goal);
+        // (H7): where the eyes point against where the target is, with the
+        // head as it really is (what the retina reports), while pursuing.
+        let corrective = matches!(self.mode, EyeMode::Pursuit) && {
+            let (l, r) = self.pursuit.angles();
+            let true_inv = input.head_rot.inverse();
+            let off = [l, r]
+                .into_iter()
+                .zip(input.eye_pos)
+                .map(|(e, c)| {
+                    let seen = angles_to(true_inv * c, true_inv * target).clamp(-range, range);
+                    (seen - e).length()
+                })
+                .fold(0.0, f64::max);
+            self.aim.corrective(&p.timing, off, t)
+        };
         AimNow {
             point: target,
             cyclops,
@@ -319,6 +337,7 @@ impl Oculomotor {
             goal_rate,
             new_target: aim.new_target,
             catch_up: aim.catch_up,
+            corrective,
             felt_inv,
             head_angvel,
             range,
@@ -365,9 +384,10 @@ impl Oculomotor {
         let err = [aim.goal[0] - l, aim.goal[1] - r];
         let max_err = err[0].length().max(err[1].length());
         let jump = (aim.new_target || aim.catch_up) && max_err > p.saccade.new_target_threshold;
-        if !(jump || p.saccade.should_start(max_err)) {
+        if !(jump || aim.corrective || p.saccade.should_start(max_err)) {
             return;
         }
+        self.aim.anchor();
         let prev = self.out;
         let plans = [0, 1].map(|k| {
             let (sy, sp) = yaw_pitch_of(world_dir(input, prev.eyes[k].angles));

@@ -24,7 +24,17 @@
 //! - **VOR latency** (H4): the vestibular signal reaches the VOR term of
 //!   (M7) `vor_latency` late (7-10 ms in head impulses: Aw et al. 1996,
 //!   J. Neurophysiol. 76:4009; Collewijn & Smeets 2000, J. Neurophysiol.
-//!   84:376).
+//!   84:376);
+//! - **VOR saturation** (H6): at the head accelerations of a blow the VOR
+//!   falls short (median gains 0.61-0.83 at 1900-7100 deg/s^2: Maas et al.
+//!   1989, Brain Res. 499:153), so the head's felt orientation, on which
+//!   the eyes' goals are computed, misses part of the rotation and the
+//!   line of sight is knocked off the target;
+//! - **corrective saccade** (H7): once the eyes have been off the target,
+//!   as vision sees it, for `corrective_latency`, a saccade brings them
+//!   back (catch-up saccades 135 +- 36 ms after a head impulse's onset:
+//!   Tian et al. 2007, Exp. Brain Res. 182:143), and the felt orientation
+//!   is anchored again to the world.
 //!
 //! With [`TimingParams::seed`] (all zero, no limits) the aim point is the
 //! target itself every tick and nothing is drawn from the random stream:
@@ -123,6 +133,36 @@ pub struct TimingParams {
     /// Delay of the vestibular signal into the VOR (H4), s. Default 0.01.
     #[serde(deserialize_with = "crate::util::check::non_negative")]
     pub vor_latency: f64,
+    /// Head acceleration up to which the VOR's gain holds (H6), deg/s^2.
+    /// Default 4000: head impulses of 3000-4000 deg/s^2 keep a gain near
+    /// 0.95 (Aw et al. 1996).
+    #[serde(deserialize_with = "crate::util::check::positive")]
+    pub vor_knee_accel: f64,
+    /// Head acceleration at which the gain has fallen to `vor_min_gain`
+    /// (H6), deg/s^2. Default 8000 (the top of Maas et al.'s range).
+    #[serde(deserialize_with = "crate::util::check::positive")]
+    pub vor_saturated_accel: f64,
+    /// The VOR's gain at and beyond `vor_saturated_accel` (H6). Default
+    /// 0.72, the middle of Maas et al. 1989's 0.61-0.83; 1 turns the
+    /// saturation off.
+    #[serde(deserialize_with = "crate::util::check::unit_interval")]
+    pub vor_min_gain: f64,
+    /// Time constant of the gain's return after a saturating transient
+    /// (H6), s. Default 0.1 (our choice: the length of a blow's head
+    /// transient).
+    #[serde(deserialize_with = "crate::util::check::positive")]
+    pub vor_gain_recovery: f64,
+    /// Time constant over which the felt head orientation drifts back to
+    /// the true one without a saccade (proprioception, H6), s. Default 0.5
+    /// (our choice).
+    #[serde(deserialize_with = "crate::util::check::positive")]
+    pub vestibular_recalibration: f64,
+    /// How long the eyes must be off the target, as vision sees it (by more
+    /// than `catch_up_threshold`), before a corrective saccade starts
+    /// (H7), s. Default 0.1 (Tian et al. 2007: 135 +- 36 ms from a head
+    /// impulse's onset, which comes a few tens of ms before the error).
+    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    pub corrective_latency: f64,
 }
 
 impl Default for TimingParams {
@@ -139,6 +179,12 @@ impl Default for TimingParams {
             gain_floor: 0.4,
             catch_up_threshold: 1.5f64.to_radians(),
             vor_latency: 0.01,
+            vor_knee_accel: 4000.0,
+            vor_saturated_accel: 8000.0,
+            vor_min_gain: 0.72,
+            vor_gain_recovery: 0.1,
+            vestibular_recalibration: 0.5,
+            corrective_latency: 0.1,
         }
     }
 }
@@ -152,8 +198,18 @@ impl TimingParams {
             pursuit_onset: 0.0,
             pursuit_limits: false,
             vor_latency: 0.0,
+            vor_min_gain: 1.0,
             ..Default::default()
         }
+    }
+
+    /// The VOR's gain at a head acceleration (rad/s^2) (H6): 1 up to the
+    /// knee, then falling linearly to the floor at `vor_saturated_accel`.
+    pub fn vor_gain(&self, accel: f64) -> f64 {
+        let a = accel.abs().to_degrees();
+        let span = (self.vor_saturated_accel - self.vor_knee_accel).max(1e-9);
+        let over = ((a - self.vor_knee_accel) / span).clamp(0.0, 1.0);
+        1.0 - (1.0 - self.vor_min_gain) * over
     }
 
     /// Pursuit gain at a target angular speed (rad/s) (H2): 1 up to the
@@ -187,6 +243,14 @@ pub struct Aim {
     last_target: Option<DVec3>,
     drive: DelayLine<DVec3>,
     vestibular: DelayLine<(DQuat, DVec3)>,
+    /// The reported angular velocity a tick ago (for the acceleration).
+    last_angvel: Option<DVec3>,
+    /// The VOR's present shortfall, 1 - gain (H6).
+    vor_loss: f64,
+    /// The rotation the felt orientation has missed, world (H6).
+    missed: DQuat,
+    /// Since when the eyes have been off the target as vision sees it (H7).
+    off_since: Option<f64>,
 }
 
 impl Aim {
@@ -259,6 +323,12 @@ impl Aim {
     /// what the vestibular signal says, `vor_latency` late. A head moved
     /// from outside drags the eyes along for that long before they
     /// counter-rotate.
+    ///
+    /// At a blow's accelerations the signal saturates (H6): the angular
+    /// velocity reaches the VOR scaled by the gain `g`, and the felt
+    /// orientation misses the rest of the rotation,
+    /// `missed <- R((1 - g) w dt) missed`, which drifts back to nothing
+    /// over `vestibular_recalibration` (or at once at a saccade, H7).
     pub fn vestibular(
         &mut self,
         p: &TimingParams,
@@ -266,7 +336,37 @@ impl Aim {
         angvel: DVec3,
         dt: f64,
     ) -> (DQuat, DVec3) {
-        self.vestibular.push((rot, angvel), p.vor_latency, dt)
+        let (rot, w) = self.vestibular.push((rot, angvel), p.vor_latency, dt);
+        let accel = self.last_angvel.map_or(0.0, |l| (w - l).length() / dt);
+        self.last_angvel = Some(w);
+        let loss = 1.0 - p.vor_gain(accel);
+        // The loss sets in at once and fades over the recovery time.
+        self.vor_loss -= self.vor_loss * (dt / p.vor_gain_recovery).min(1.0);
+        self.vor_loss = self.vor_loss.max(loss);
+        if self.vor_loss > 0.0 || self.missed != DQuat::IDENTITY {
+            let miss = DQuat::from_scaled_axis(self.vor_loss * w * dt);
+            let back = (dt / p.vestibular_recalibration).min(1.0);
+            self.missed = (miss * self.missed).normalize().slerp(DQuat::IDENTITY, back);
+        }
+        (self.missed.inverse() * rot, (1.0 - self.vor_loss) * w)
+    }
+
+    /// The eyes are `error` rad off the target as vision sees it (H7):
+    /// true once that has lasted `corrective_latency` (the caller then
+    /// starts a corrective saccade and calls [`Aim::anchor`]).
+    pub fn corrective(&mut self, p: &TimingParams, error: f64, t: f64) -> bool {
+        if error <= p.catch_up_threshold {
+            self.off_since = None;
+            return false;
+        }
+        t - *self.off_since.get_or_insert(t) >= p.corrective_latency
+    }
+
+    /// A saccade re-anchored the gaze to the world: nothing is missed any
+    /// more (H7).
+    pub fn anchor(&mut self) {
+        self.missed = DQuat::IDENTITY;
+        self.off_since = None;
     }
 }
 

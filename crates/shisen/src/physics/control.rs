@@ -194,6 +194,12 @@ pub struct JointState {
 /// pivot. Gravity compensation is added by the caller ([`crate::physics::world`]),
 /// which knows the subtree masses.
 pub fn pd_torque(g: &JointGains, target: &JointTarget, s: &JointState, dt: f32) -> Vec3 {
+    pd_feedback(g, target, s, dt) + feedforward(g, target, s)
+}
+
+/// The feedback part of [`pd_torque`]: the stable-PD spring and damper,
+/// `I (I + kd dt)^-1 [kp (e + dt w_err) + kd w_err]`, world frame.
+pub fn pd_feedback(g: &JointGains, target: &JointTarget, s: &JointState, dt: f32) -> Vec3 {
     let q_rel = s.parent_rot.inverse() * s.child_rot;
     let mut q_err = target.rotation * q_rel.inverse();
     if q_err.w < 0.0 {
@@ -201,19 +207,21 @@ pub fn pd_torque(g: &JointGains, target: &JointTarget, s: &JointState, dt: f32) 
     }
     let e = s.parent_rot * q_err.to_scaled_axis();
     let w_ref = s.parent_rot * target.velocity;
-    let a_ref = s.parent_rot * target.acceleration;
     let kp = g.kp as f32;
     let kd = g.kd as f32;
-    let ff = g.feedforward as f32;
     let w_err = w_ref - s.rel_angvel;
     let pd = kp * (e + dt * w_err) + kd * w_err;
     let implicit = s.inertia + Mat3::from_diagonal(Vec3::splat(kd * dt));
-    let solved = if implicit.determinant().abs() > f32::MIN_POSITIVE {
+    if implicit.determinant().abs() > f32::MIN_POSITIVE {
         s.inertia * (implicit.inverse() * pd)
     } else {
         pd // no inertia to speak of: plain PD
-    };
-    solved + ff * (s.inertia * a_ref)
+    }
+}
+
+/// The feed-forward part of [`pd_torque`]: `ff I a_ref`, world frame.
+pub fn feedforward(g: &JointGains, target: &JointTarget, s: &JointState) -> Vec3 {
+    g.feedforward as f32 * (s.inertia * (s.parent_rot * target.acceleration))
 }
 
 #[cfg(test)]

@@ -14,6 +14,7 @@ use crate::physics::body::{
     BodyPlan, Group, HARD_STOP_MARGIN_DEG, JointKind, OpponentPart, Seg, Segment, Shape,
 };
 use crate::physics::control::{Gains, JointState, JointTarget, pd_torque};
+use crate::physics::neck::{NeckParams, NeckState, neck_torque};
 use crate::physics::opponent::{DriveState, OPPONENT_MASS, drive_impulse};
 use shisen_gaze::util::math::JointAngles;
 use shisen_gaze::vision::{BodyId, Motion, Scenery};
@@ -504,23 +505,39 @@ impl World {
         tau
     }
 
-    /// Apply one tick of PD torques (as impulses over `dt`) to every
-    /// controlled joint. `targets` is indexed by segment ([`Seg::index`]).
-    pub fn apply_control(&mut self, gains: &Gains, targets: &[JointTarget]) {
+    /// The measured state of segment `s`'s joint (it must have a parent).
+    pub fn joint_state(&self, s: Seg) -> JointState {
+        let p = self.parent(s);
+        JointState {
+            parent_rot: *self.rb(p).rotation(),
+            child_rot: *self.rb(s).rotation(),
+            rel_angvel: self.rb(s).angvel() - self.rb(p).angvel(),
+            inertia: self.subtree_inertia(s, self.pivot(s)),
+        }
+    }
+
+    /// Apply one tick of joint torques (as impulses over `dt`) to every
+    /// controlled joint: the PD law, the neck's through its muscles'
+    /// present bounds ([`neck_torque`]). `targets` is indexed by segment
+    /// ([`Seg::index`]).
+    pub fn apply_control(
+        &mut self,
+        gains: &Gains,
+        targets: &[JointTarget],
+        neck: (&NeckParams, &NeckState),
+    ) {
         let dt = self.dt as f32;
         let mut impulses = Vec::with_capacity(self.plan.segments.len());
         for (s, segm) in Seg::ALL.into_iter().zip(&self.plan.segments) {
             let (Some(p), Some(group)) = (segm.parent, segm.group) else {
                 continue;
             };
-            let pivot = self.pivot(s);
-            let state = JointState {
-                parent_rot: *self.rb(p).rotation(),
-                child_rot: *self.rb(s).rotation(),
-                rel_angvel: self.rb(s).angvel() - self.rb(p).angvel(),
-                inertia: self.subtree_inertia(s, pivot),
+            let state = self.joint_state(s);
+            let target = &targets[s.index()];
+            let mut tau = match group {
+                Group::Neck => neck_torque(gains.group(group), neck.0, neck.1, target, &state, dt),
+                _ => pd_torque(gains.group(group), target, &state, dt),
             };
-            let mut tau = pd_torque(gains.group(group), &targets[s.index()], &state, dt);
             if gains.gravity_compensation {
                 tau += self.gravity_torque(s);
             }

@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use serde::{Deserialize, Serialize};
 
 use crate::physics::control::Gains;
+use crate::physics::neck::NeckParams;
 use crate::sim::expect::Expect;
 use crate::sim::timeline::Event;
 use crate::sim::{BodySpec, Params, Profile};
@@ -32,6 +33,8 @@ pub struct VhParams {
     pub attention: AttentionParams,
     /// Saccade, pursuit and head laws.
     pub oculomotor: OculomotorParams,
+    /// The neck under impact: intrinsic impedance, tone, bracing, reflex.
+    pub neck: NeckParams,
     /// The face.
     pub face: FaceConfig,
 }
@@ -44,6 +47,7 @@ impl VhParams {
         self.vision = p.vision.clone();
         self.attention = p.attention.clone();
         self.oculomotor = p.oculomotor.clone();
+        self.neck = p.neck.clone();
     }
 }
 

@@ -103,6 +103,7 @@ impl LoadedScene {
             vision: vh.vision.clone(),
             attention: vh.attention.clone(),
             oculomotor: vh.oculomotor.clone(),
+            neck: vh.neck.clone(),
         };
         let mut model = Model {
             props: self.scene.bodies.clone(),

@@ -51,6 +51,9 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
     if let Err(m) = scene.vh.oculomotor.pursuit.validate() {
         return Err(err("pursuit", "vh.oculomotor.pursuit".into(), m));
     }
+    if let Err(m) = scene.vh.neck.validate() {
+        return Err(err("neck", "vh.neck".into(), m));
+    }
     let mut names: Vec<&str> = OpponentPart::ALL.map(OpponentPart::name).to_vec();
     for (i, b) in scene.bodies.iter().enumerate() {
         // `point` and `opponent_body` name gaze targets that are no body

@@ -129,6 +129,8 @@ pub struct Blows {
     touching: Vec<(BodyId, BlowKind)>,
     /// Whether an opponent glove touches the VH's head this step.
     head_contact: bool,
+    /// The opponent glove whose contact with the VH's head began this step.
+    head_struck: Option<BodyId>,
     /// Totals so far.
     pub tally: Tally,
 }
@@ -180,6 +182,7 @@ impl Blows {
             pairs,
             touching: Vec::new(),
             head_contact: false,
+            head_struck: None,
             tally: Tally::default(),
         }
     }
@@ -196,6 +199,12 @@ impl Blows {
         self.head_contact
     }
 
+    /// The opponent glove whose contact with the VH's head began this step
+    /// (the moment a blow is felt, before its impulse is known).
+    pub fn head_struck(&self) -> Option<BodyId> {
+        self.head_struck
+    }
+
     /// An opponent's punch was stopped on the way out (see
     /// `Timeline::recoil`) while touching `on`: the guard, or the target.
     pub fn opponent_punch_stopped(&mut self, on: BlowKind) {
@@ -210,6 +219,7 @@ impl Blows {
         let mut out = Vec::new();
         self.touching.clear();
         self.head_contact = false;
+        self.head_struck = None;
         let head = Seg::Head.body();
         for p in &mut self.pairs {
             if p.episode
@@ -226,6 +236,9 @@ impl Blows {
                     Some(g) if p.kind == BlowKind::Hit => g.1 = BlowKind::Hit,
                     Some(_) => {}
                     None => self.touching.push((p.glove, p.kind)),
+                }
+                if p.episode.is_none() && p.by == Fighter::Opponent && p.part == head {
+                    self.head_struck = Some(p.glove);
                 }
                 let e = p.episode.get_or_insert(Episode {
                     started: t,

@@ -19,8 +19,9 @@ use glam::{DVec2, DVec3, Quat, Vec3};
 use rand::SeedableRng;
 use rand::rngs::StdRng;
 
-use crate::physics::body::{Seg, Shape, arm_ik};
+use crate::physics::body::{OpponentPart, Seg, Shape, arm_ik};
 use crate::physics::control::JointTarget;
+use crate::physics::neck::{self, NeckState};
 use crate::physics::world::{PropSpec, World};
 use blows::{Blow, Blows, Tally};
 pub use model::{BodySpec, DT, Model, Params, Profile, PropShape};
@@ -104,6 +105,8 @@ pub struct Sim {
     pub resets: u32,
     /// Hits and blocks both ways.
     blows: Blows,
+    /// The neck muscles' activation (tone, bracing, reflex).
+    pub neck: NeckState,
     last: Option<Sample>,
 }
 
@@ -171,6 +174,7 @@ impl Sim {
             fixated: None,
             resets: 0,
             blows,
+            neck: NeckState::default(),
             last: None,
         }
     }
@@ -236,6 +240,7 @@ impl Sim {
         for t in &mut self.targets {
             *t = JointTarget::default();
         }
+        self.neck = NeckState::default();
         self.resets += 1;
     }
 
@@ -405,6 +410,9 @@ impl Sim {
     /// sparring changes the blink rate.
     fn animate_face(&mut self, gaze: &GazeStep) {
         let face = &self.model.face;
+        if self.glove_threatens_eyes() {
+            self.face_state.threat(face);
+        }
         if let Some(amplitude) = self.oculomotor.saccade_started() {
             self.face_state
                 .gaze_shift(face, amplitude.to_degrees(), &mut self.rng.face);
@@ -413,6 +421,24 @@ impl Sim {
         self.face_state.engaged = self.sparring;
         self.face_state
             .step(face, self.model.dt, &mut self.rng.face);
+    }
+
+    /// Whether an opponent glove, as the VH perceives it, would reach its
+    /// face within the reflex's time to contact.
+    fn glove_threatens_eyes(&self) -> bool {
+        let eyes = Seg::EYES.map(|e| self.world.position(e).as_dvec3());
+        let eyes = (eyes[0] + eyes[1]) / 2.0;
+        let ttc = self.model.face.params.reflex.threat_time_to_contact;
+        let gloves = OpponentPart::GLOVES.map(|g| self.world.part(g));
+        self.seen
+            .iter()
+            .filter(|s| gloves.contains(&s.body))
+            .any(|s| {
+                let to = eyes - s.position;
+                let d = to.length();
+                let closing = s.velocity.dot(to / d.max(1e-9));
+                closing > 0.5 && (d - 0.1).max(0.0) / closing < ttc
+            })
     }
 
     /// Arms: inverse kinematics of the planned glove positions; the
@@ -446,8 +472,16 @@ impl Sim {
     /// Actuate and integrate: PD torques toward the targets, one physics
     /// step, and recovery if it blew up. Returns whether the VH was reset.
     fn actuate_and_integrate(&mut self) -> bool {
+        let p = &self.model.params;
+        let head = &self.targets[Seg::Head.index()];
+        let stretch = neck::stretch(head, &self.world.joint_state(Seg::Head));
+        // The VH braces while it guards: it has seen the punch coming
+        // (through vision's and the guard's latencies).
+        let bracing = self.behaviour.action() == ActionKind::Guard;
+        self.neck
+            .step(&p.neck, stretch, bracing, self.time(), self.model.dt);
         self.world
-            .apply_control(&self.model.params.gains, &self.targets);
+            .apply_control(&p.gains, &self.targets, (&p.neck, &self.neck));
         self.world.step();
         self.tick += 1;
         let blow_up = self.world.blow_up(BLOW_UP_ANGVEL);
@@ -463,6 +497,14 @@ impl Sim {
     fn resolve_contacts(&mut self) -> Vec<Blow> {
         let t = self.time();
         let blows = self.blows.step(&self.world, t);
+        if let Some(g) = self.blows.head_struck() {
+            // Felt at contact: the glove's momentum toward the head.
+            let to_head = (self.world.position(Seg::Head) - self.world.position(g)).normalize_or_zero();
+            let closing = (self.world.velocity(g) - self.world.velocity(Seg::Head)).dot(to_head);
+            let momentum = self.world.rb(g).mass() * closing.max(0.0);
+            self.face_state
+                .struck(&self.model.face, f64::from(momentum));
+        }
         for (g, on) in self.blows.touching().to_vec() {
             let (at, v) = (
                 self.world.position(g).as_dvec3(),
@@ -541,6 +583,7 @@ impl Sim {
             neck_target,
             neck_actual: w.joint_angles(Seg::Head),
             head_world: DVec2::new(hy, hp),
+            head_speed: f64::from(w.rb(Seg::Head).angvel().length()),
             top_saliency: top,
             finite: w.is_finite(),
             punching: self.behaviour.punching(),

@@ -16,6 +16,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::physics::body::BodyPlan;
 use crate::physics::control::Gains;
+use crate::physics::neck::NeckParams;
 use shisen_face::Face;
 use shisen_gaze::attention::AttentionParams;
 use shisen_gaze::behaviour::BehaviourParams;
@@ -44,6 +45,8 @@ pub struct Params {
     pub attention: AttentionParams,
     /// Saccade, pursuit and head laws.
     pub oculomotor: OculomotorParams,
+    /// The neck under impact.
+    pub neck: NeckParams,
 }
 
 /// Which defaults the VH's timing and perception follow (scene
@@ -73,6 +76,7 @@ impl Params {
             self.oculomotor.timing = shisen_gaze::oculomotor::timing::TimingParams::seed();
             self.behaviour.guard_reaction = 0.0;
             self.attention.onset_gain = 0.0;
+            self.neck.human = false;
         }
     }
 }
@@ -99,8 +103,8 @@ impl Model {
     /// ([`Params::apply_profile`]) and the face's blinks (the seed blinks
     /// only when neutral, at the thesis's rate whatever the situation), lids
     /// (the thesis's linear lid), skin (it never wrinkles nor spreads a
-    /// pull) and lips (they part with the jaw whatever orbicularis oris
-    /// does).
+    /// pull), lips (they part with the jaw whatever orbicularis oris
+    /// does) and reflexes (none: no blink or wince at a blow).
     pub fn apply_profile(&mut self, profile: Profile) {
         self.params.apply_profile(profile);
         if profile != Profile::Seed {
@@ -115,6 +119,7 @@ impl Model {
         seed.skin.wrinkle_spacing_m = 0.0;
         seed.skin.pull_spread_m = 0.0;
         seed.lips.seal_k = None;
+        seed.reflex.enabled = false;
         if seed != self.face.params {
             // The face is shared: rebuilt once here, not per run (the scene
             // loader applies the profile to the face it shares). The rig's

@@ -41,6 +41,8 @@ pub struct Sample {
     pub neck_actual: JointAngles,
     /// Head forward direction in the world as (yaw, pitch), rad.
     pub head_world: DVec2,
+    /// The head's angular speed in the world, rad/s.
+    pub head_speed: f64,
     /// Top saliency scores (body name, score), highest first.
     pub top_saliency: Vec<(String, f64)>,
     /// True if every body state is finite.

@@ -87,6 +87,7 @@ pub const COLUMNS: &[(&str, Cell)] = &[
     ("neck_roll", num(|s| deg(s.neck_actual.roll))),
     ("head_yaw", num(|s| deg(s.head_world.x))),
     ("head_pitch", num(|s| deg(s.head_world.y))),
+    ("head_speed", num(|s| deg(s.head_speed))),
     ("punching", yes(|s| flag(s.punching))),
     ("head_hit", yes(|s| flag(s.head_hit))),
     (

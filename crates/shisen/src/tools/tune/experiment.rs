@@ -8,6 +8,7 @@ use serde::Serialize;
 
 use crate::physics::body::{BodyPlan, Group};
 use crate::physics::control::{Gains, JointTarget};
+use crate::physics::neck::{NeckParams, NeckState};
 use crate::physics::world::World;
 use crate::tools::metrics::{Instability, StepMetrics, instability, step_metrics, tracking_error};
 use crate::tools::plot::{Panel, Series, Stroke, chart};
@@ -140,7 +141,8 @@ pub fn run(group: Group, exp: Experiment, gains: &Gains, dt: f64) -> Response {
             c.accel = DVec2::new(0.0, cmd.accel.x);
         }
         targets[joint.index()] = JointTarget::yaw_pitch(c.angles, c.rates, c.accel);
-        world.apply_control(gains, &targets);
+        // The PD law itself is what is tuned: the neck unbounded.
+        world.apply_control(gains, &targets, (&NeckParams::stiff(), &NeckState::default()));
         world.step();
         if s >= 0.0 {
             let a = world.joint_angles(joint);

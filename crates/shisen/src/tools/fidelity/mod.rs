@@ -14,6 +14,8 @@ use crate::sim::timeline::{Action, Event, Hand, Part, PunchTarget};
 use crate::sim::{BodySpec, Model, Profile, PropShape, Sample, Sim};
 use crate::tools::plot::{Panel, Series, Stroke, chart};
 
+mod blow;
+
 /// One row of the report.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Row {
@@ -162,6 +164,7 @@ pub fn battery(model: &Model) -> (Vec<Row>, Curves) {
     sparring_blinks(model, &mut rows);
     microsaccades(model, &mut rows);
     glance(model, &mut rows);
+    blow::blows(model, &mut rows);
     (rows, curves)
 }
 
