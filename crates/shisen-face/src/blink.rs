@@ -139,6 +139,13 @@ impl BlinkProcess {
         self.potential = 0.0;
     }
 
+    /// Begin a reflex blink now: the lids close, but the spontaneous
+    /// process's potential runs on (the reflex arc is not the central
+    /// blink generator).
+    pub fn reflex_blink(&mut self) {
+        self.begin();
+    }
+
     fn begin(&mut self) {
         self.blink_time = Some(0.0);
         self.count += 1;

@@ -159,7 +159,7 @@ impl FaceState {
         let scale = situation / (1.0 + bp.arousal_gain * arousal);
         self.blink.step(bp, dt, allowed, scale, rng);
         if self.reflex.step(&face.params.reflex, dt) && self.blink.blink_time.is_none() {
-            self.blink.start_blink();
+            self.blink.reflex_blink();
         }
         let mut a = self
             .transition

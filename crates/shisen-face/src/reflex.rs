@@ -51,6 +51,12 @@ pub struct ReflexParams {
     /// a blink must start before contact to matter).
     #[serde(deserialize_with = "latency")]
     pub threat_time_to_contact: f64,
+    /// A threat blinks only this long after the last reflex blink, s.
+    /// Default 5: the blink reflex's late response is depressed for
+    /// seconds after a preceding one (its recovery cycle to paired
+    /// stimuli: Kimura 1973, Brain 96:87), and repeated threats habituate.
+    #[serde(deserialize_with = "hold")]
+    pub threat_refractory: f64,
     /// From a blow to the wince's start, s. Default 0.08 (within 200 ms:
     /// Ekman, Friesen & Simons 1985).
     #[serde(deserialize_with = "latency")]
@@ -78,6 +84,7 @@ impl Default for ReflexParams {
             blink_latency: 0.03,
             threat_blink_latency: 0.05,
             threat_time_to_contact: 0.15,
+            threat_refractory: 5.0,
             wince_onset: 0.08,
             wince_rise: 0.1,
             wince_hold: 0.25,
@@ -121,6 +128,8 @@ pub struct ReflexState {
     wince: Option<(f64, f64)>,
     /// Reflex blinks started so far.
     pub blinks: u64,
+    /// Time since the last reflex blink, s (none yet: `None`).
+    since_blink: Option<f64>,
 }
 
 impl ReflexState {
@@ -139,7 +148,8 @@ impl ReflexState {
 
     /// A glove seen closing on the eyes: a reflex blink (if none is due).
     pub fn threat(&mut self, p: &ReflexParams) {
-        if p.enabled {
+        let rested = self.since_blink.is_none_or(|s| s >= p.threat_refractory);
+        if p.enabled && rested {
             self.schedule_blink(p.threat_blink_latency);
         }
     }
@@ -151,6 +161,9 @@ impl ReflexState {
 
     /// Advance by `dt`; true when a reflex blink is due now.
     pub fn step(&mut self, p: &ReflexParams, dt: f64) -> bool {
+        if let Some(s) = self.since_blink.as_mut() {
+            *s += dt;
+        }
         if let Some((s, _)) = self.wince.as_mut() {
             *s += dt;
             if *s > p.wince_onset + p.wince_rise + p.wince_hold + p.wince_release {
@@ -161,6 +174,7 @@ impl ReflexState {
             Some(d) if *d <= dt => {
                 self.blink_in = None;
                 self.blinks += 1;
+                self.since_blink = Some(0.0);
                 true
             }
             Some(d) => {

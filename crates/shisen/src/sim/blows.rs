@@ -13,12 +13,11 @@ use crate::physics::body::{OpponentPart, Seg};
 use crate::physics::world::World;
 use shisen_gaze::vision::BodyId;
 
-/// Smallest contact impulse of a blow, N s. A 1.5 kg glove (hand plus the
-/// arm's effective mass behind it) stopped from 1.3 m/s; real punches carry
-/// several times that (olympic boxers' hands reach 6-9 m/s with an
-/// effective mass of about 3 kg: Walilko, Viano & Bir 2005, Br. J. Sports
-/// Med. 39:710).
-pub const BLOW_IMPULSE: f32 = 2.0;
+/// Smallest contact impulse of a blow, N s: a punch's effective mass
+/// (2.9 kg: Walilko, Viano & Bir 2005, Br. J. Sports Med. 39:710) stopped
+/// from about 1 m/s; real punches carry five times that (Olympic boxers'
+/// hands reach 6-9 m/s).
+pub const BLOW_IMPULSE: f32 = 3.0;
 
 /// The part of a contact that decides whether it was a blow, s: the impact
 /// itself (a punch's contact lasts 10-30 ms), not the push that may follow.
@@ -129,8 +128,7 @@ pub struct Blows {
     touching: Vec<(BodyId, BlowKind)>,
     /// Whether an opponent glove touches the VH's head this step.
     head_contact: bool,
-    /// The opponent glove whose contact with the VH's head began this step.
-    head_struck: Option<BodyId>,
+
     /// Totals so far.
     pub tally: Tally,
 }
@@ -182,7 +180,6 @@ impl Blows {
             pairs,
             touching: Vec::new(),
             head_contact: false,
-            head_struck: None,
             tally: Tally::default(),
         }
     }
@@ -199,12 +196,6 @@ impl Blows {
         self.head_contact
     }
 
-    /// The opponent glove whose contact with the VH's head began this step
-    /// (the moment a blow is felt, before its impulse is known).
-    pub fn head_struck(&self) -> Option<BodyId> {
-        self.head_struck
-    }
-
     /// An opponent's punch was stopped on the way out (see
     /// `Timeline::recoil`) while touching `on`: the guard, or the target.
     pub fn opponent_punch_stopped(&mut self, on: BlowKind) {
@@ -219,7 +210,6 @@ impl Blows {
         let mut out = Vec::new();
         self.touching.clear();
         self.head_contact = false;
-        self.head_struck = None;
         let head = Seg::Head.body();
         for p in &mut self.pairs {
             if p.episode
@@ -236,9 +226,6 @@ impl Blows {
                     Some(g) if p.kind == BlowKind::Hit => g.1 = BlowKind::Hit,
                     Some(_) => {}
                     None => self.touching.push((p.glove, p.kind)),
-                }
-                if p.episode.is_none() && p.by == Fighter::Opponent && p.part == head {
-                    self.head_struck = Some(p.glove);
                 }
                 let e = p.episode.get_or_insert(Episode {
                     started: t,

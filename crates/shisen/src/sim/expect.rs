@@ -186,12 +186,66 @@ pub enum Expect {
         at_most: Option<u32>,
     },
     /// The head's direction in the world turns at least `at_least_deg`
-    /// away from where it pointed at the start of [from, to] (a hit rocks
-    /// the head).
+    /// (and at most `at_most_deg`, if given) away from where it pointed at
+    /// the start of [from, to] (a hit rocks the head).
     HeadRotation {
         /// Least peak rotation, deg (positive).
         #[serde(deserialize_with = "shisen_gaze::util::check::positive")]
         at_least_deg: f64,
+        /// Most peak rotation, deg, if bounded.
+        #[serde(
+            default,
+            deserialize_with = "shisen_gaze::util::check::opt_non_negative",
+            skip_serializing_if = "Option::is_none"
+        )]
+        at_most_deg: Option<f64>,
+        /// Window start, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        to: f64,
+    },
+    /// The head's peak angular speed in the world over [from, to] lies in
+    /// [at_least, at_most], rad/s (a blow snaps the head).
+    HeadSpeed {
+        /// Least peak speed, rad/s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        at_least: f64,
+        /// Most peak speed, rad/s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        at_most: f64,
+        /// Window start, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        to: f64,
+    },
+    /// Every hit one side lands in [from, to] (at least one) carries an
+    /// impulse in [at_least, at_most], N s.
+    BlowMomentum {
+        /// Who threw them: `Vh` or `Opponent`.
+        by: Fighter,
+        /// Least impulse, N s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        at_least: f64,
+        /// Most impulse, N s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        at_most: f64,
+        /// Window start, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        to: f64,
+    },
+    /// An eye's line-of-sight error to the gaze point reaches at least
+    /// `min_deg` at some time in [from, to] (a blow knocks the gaze off).
+    LineOfSightReaches {
+        /// Bound, degrees.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        min_deg: f64,
         /// Window start, s.
         #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
         from: f64,
@@ -247,6 +301,9 @@ impl Expect {
             | Expect::HeadHit { from, to, .. }
             | Expect::Blows { from, to, .. }
             | Expect::HeadRotation { from, to, .. }
+            | Expect::HeadSpeed { from, to, .. }
+            | Expect::BlowMomentum { from, to, .. }
+            | Expect::LineOfSightReaches { from, to, .. }
             | Expect::ActionShare { from, to, .. } => Some((*from, *to)),
             Expect::AngleBelow { from, to, .. } => {
                 Some((from.unwrap_or(0.0), to.unwrap_or(duration)))
@@ -344,7 +401,8 @@ impl Checker {
                     }
                     a.punching = s.punching;
                 }
-                Expect::LineOfSight { from, to, .. } => {
+                Expect::LineOfSight { from, to, .. }
+                | Expect::LineOfSightReaches { from, to, .. } => {
                     if inside(s.t, *from, *to) {
                         let v = s.los_error[0].max(s.los_error[1]).to_degrees();
                         a.n += 1;
@@ -387,6 +445,22 @@ impl Checker {
                         let o = *a.origin.get_or_insert(s.head_world);
                         a.n += 1;
                         a.max = a.max.max((s.head_world - o).length().to_degrees());
+                    }
+                }
+                Expect::HeadSpeed { from, to, .. } => {
+                    if inside(s.t, *from, *to) {
+                        a.n += 1;
+                        a.max = a.max.max(s.head_speed);
+                    }
+                }
+                Expect::BlowMomentum { by, from, to, .. } => {
+                    if inside(s.t, *from, *to) {
+                        for b in s.blows.iter().filter(|b| b.kind == BlowKind::Hit && b.by == *by) {
+                            let j = f64::from(b.impulse);
+                            a.hits += 1;
+                            a.max = a.max.max(j);
+                            a.min = Some(a.min.map_or(j, |m: f64| m.min(j)));
+                        }
                     }
                 }
                 Expect::Finite => {
@@ -559,13 +633,53 @@ fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
         },
         Expect::HeadRotation {
             at_least_deg,
+            at_most_deg,
             from,
             to,
         } => Verdict {
-            what: format!("the head turns >= {at_least_deg} deg in [{from}, {to}] s"),
+            what: format!(
+                "the head turns >= {at_least_deg}{} deg in [{from}, {to}] s",
+                at_most_deg.map_or(String::new(), |m| format!(" and <= {m}"))
+            ),
             measured: format!("peak {:.2} deg", a.max),
             value: a.max,
-            pass: a.n > 0 && a.max >= *at_least_deg,
+            pass: a.n > 0 && a.max >= *at_least_deg && at_most_deg.is_none_or(|m| a.max <= m),
+        },
+        Expect::HeadSpeed {
+            at_least,
+            at_most,
+            from,
+            to,
+        } => Verdict {
+            what: format!("the head's peak speed in [{at_least}, {at_most}] rad/s in [{from}, {to}] s"),
+            measured: format!("peak {:.2} rad/s", a.max),
+            value: a.max,
+            pass: a.n > 0 && a.max >= *at_least && a.max <= *at_most,
+        },
+        Expect::BlowMomentum {
+            by,
+            at_least,
+            at_most,
+            from,
+            to,
+        } => {
+            let lo = a.min.unwrap_or(f64::NAN);
+            Verdict {
+                what: format!("hits by {by:?} in [{from}, {to}] s carry [{at_least}, {at_most}] N s"),
+                measured: if a.hits == 0 {
+                    "no hit".into()
+                } else {
+                    format!("{} hits, {lo:.2}-{:.2} N s", a.hits, a.max)
+                },
+                value: a.max,
+                pass: a.hits > 0 && lo >= *at_least && a.max <= *at_most,
+            }
+        }
+        Expect::LineOfSightReaches { min_deg, from, to } => Verdict {
+            what: format!("line-of-sight error reaches {min_deg} deg in [{from}, {to}] s"),
+            measured: format!("max {:.3} deg", a.max),
+            value: a.max,
+            pass: a.n > 0 && a.max >= *min_deg,
         },
         Expect::Finite => Verdict {
             what: "state finite throughout (no NaN)".into(),

@@ -35,7 +35,7 @@ use shisen_gaze::target::{Spot, TargetId};
 use shisen_gaze::util::delay::DelayLine;
 use shisen_gaze::util::math::{JointAngles, angle_between, yaw_pitch_of};
 use shisen_gaze::vision::BodyId;
-use shisen_gaze::vision::{Seen, see};
+use shisen_gaze::vision::{Scenery, Seen, see};
 use timeline::{Event, Timeline};
 use track::Track;
 
@@ -50,6 +50,10 @@ pub const BLOW_UP_ANGVEL: f32 = 200.0;
 /// it last guarded or attacked, s: longer than the gaps between actions in
 /// a bout (attacks come every few seconds), shorter than a pause.
 const SPARRING_HOLD: f64 = 5.0;
+
+/// A seen glove threatens the eyes when its path passes this close to
+/// them, m (about a glove's width).
+const EYE_THREAT_MISS: f64 = 0.12;
 
 /// Independent random streams, one per consumer, all derived from the
 /// scene seed, so adding draws to one never shifts another.
@@ -107,6 +111,8 @@ pub struct Sim {
     blows: Blows,
     /// The neck muscles' activation (tone, bracing, reflex).
     pub neck: NeckState,
+    /// Bodies other than the VH's touching its head at the last step.
+    head_touch: Vec<BodyId>,
     last: Option<Sample>,
 }
 
@@ -175,6 +181,7 @@ impl Sim {
             resets: 0,
             blows,
             neck: NeckState::default(),
+            head_touch: Vec::new(),
             last: None,
         }
     }
@@ -437,7 +444,11 @@ impl Sim {
                 let to = eyes - s.position;
                 let d = to.length();
                 let closing = s.velocity.dot(to / d.max(1e-9));
-                closing > 0.5 && (d - 0.1).max(0.0) / closing < ttc
+                // Heading for the eyes: its path passes within a glove's
+                // width of them.
+                let heading = s.velocity.normalize_or_zero();
+                let miss = (to - to.dot(heading) * heading).length();
+                closing > 0.5 && miss < EYE_THREAT_MISS && (d - 0.1).max(0.0) / closing < ttc
             })
     }
 
@@ -497,13 +508,10 @@ impl Sim {
     fn resolve_contacts(&mut self) -> Vec<Blow> {
         let t = self.time();
         let blows = self.blows.step(&self.world, t);
-        if let Some(g) = self.blows.head_struck() {
-            // Felt at contact: the glove's momentum toward the head.
-            let to_head = (self.world.position(Seg::Head) - self.world.position(g)).normalize_or_zero();
-            let closing = (self.world.velocity(g) - self.world.velocity(Seg::Head)).dot(to_head);
-            let momentum = self.world.rb(g).mass() * closing.max(0.0);
-            self.face_state
-                .struck(&self.model.face, f64::from(momentum));
+        // A touch is not a blow: only a body arriving with a blow's
+        // momentum makes the face react.
+        if let Some(momentum) = self.head_struck().filter(|&m| m >= f64::from(blows::BLOW_IMPULSE)) {
+            self.face_state.struck(&self.model.face, momentum);
         }
         for (g, on) in self.blows.touching().to_vec() {
             let (at, v) = (
@@ -515,6 +523,28 @@ impl Sim {
             }
         }
         blows
+    }
+
+    /// A body (a glove, a prop) that began to touch the VH's head this
+    /// step: the moment a blow is felt, before its impulse is known. Its
+    /// momentum toward the head, N s.
+    fn head_struck(&mut self) -> Option<f64> {
+        let w = &self.world;
+        let touching: Vec<BodyId> = w
+            .body_ids()
+            .filter(|&b| !w.is_own(b) && w.in_contact(Seg::Head, b))
+            .collect();
+        let new = touching
+            .iter()
+            .filter(|b| !self.head_touch.contains(b))
+            .map(|&b| {
+                let to_head = (w.position(Seg::Head) - w.position(b)).normalize_or_zero();
+                let closing = (w.velocity(b) - w.velocity(Seg::Head)).dot(to_head);
+                f64::from(w.rb(b).mass() * closing.max(0.0))
+            })
+            .reduce(f64::max);
+        self.head_touch = touching;
+        new
     }
 
     /// Record: measure the tick into a [`Sample`], and note which target
