@@ -74,7 +74,7 @@ pub struct FaceState {
     /// The VH is busy sparring (guarding or attacking): blinks come less
     /// often ([`super::params::BlinkParams::engaged_interval_scale`]).
     pub engaged: bool,
-    /// Reflex blinks and the wince (F13).
+    /// Reflex blinks and the wince (F9).
     pub reflex: ReflexState,
 }
 
@@ -129,7 +129,7 @@ impl FaceState {
     }
 
     /// A blow of `impulse` N s struck the head: a reflex blink and a wince
-    /// follow (F13).
+    /// follow (F9).
     pub fn struck(&mut self, face: &Face, impulse: f64) {
         self.reflex.struck(&face.params.reflex, impulse);
     }

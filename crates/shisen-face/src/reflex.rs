@@ -1,5 +1,5 @@
 //! The face's defensive reflexes: a blink when the head is struck or a
-//! glove arrives at the eyes, and a wince after a blow (F13).
+//! glove arrives at the eyes, and a wince after a blow (F9).
 //!
 //! A blow to the head starts a reflex blink `blink_latency` later (the
 //! blink reflex's late, bilateral R2 component comes 23-46 ms after a tap
@@ -19,7 +19,7 @@
 //! `threat_blink_latency`.
 //!
 //! ```text
-//! w(s) = W min(1, s'/rise)                 0 <= s' = s - onset <= rise + hold   (F13)
+//! w(s) = W min(1, s'/rise)                 0 <= s' = s - onset <= rise + hold   (F9)
 //! w(s) = W (1 - min_jerk((s' - rise - hold) / release))     after that
 //! W = min(1, J / full_impulse)
 //! ```
@@ -38,7 +38,7 @@ pub struct ReflexParams {
     /// seed's face).
     pub enabled: bool,
     /// From a blow to the head to the reflex blink's start, s. Default
-    /// 0.03 (R2 at 23-46 ms, Rushworth 1962).
+    /// 0.03 (Rushworth 1962: the late response, R2, at 23-46 ms).
     #[serde(deserialize_with = "latency")]
     pub blink_latency: f64,
     /// From a glove seen closing on the eyes to the blink's start, s.
@@ -140,7 +140,9 @@ impl ReflexState {
         }
         self.schedule_blink(p.blink_latency);
         let w = (impulse / p.full_impulse).clamp(0.0, 1.0);
-        let stronger = self.wince.is_none_or(|(_, old)| w >= old * self.level_factor(p));
+        let stronger = self
+            .wince
+            .is_none_or(|(_, old)| w >= old * self.level_factor(p));
         if stronger {
             self.wince = Some((0.0, w));
         }
@@ -185,7 +187,7 @@ impl ReflexState {
         }
     }
 
-    /// The wince's present level relative to its strength, 0-1 (F13).
+    /// The wince's present level relative to its strength, 0-1 (F9).
     fn level_factor(&self, p: &ReflexParams) -> f64 {
         let Some((s, _)) = self.wince else {
             return 0.0;
@@ -205,8 +207,7 @@ impl ReflexState {
 
     /// The wince's level now, 0-1.
     pub fn wince(&self, p: &ReflexParams) -> f64 {
-        self.wince
-            .map_or(0.0, |(_, w)| w * self.level_factor(p))
+        self.wince.map_or(0.0, |(_, w)| w * self.level_factor(p))
     }
 
     /// The wince's contractions, to add to the expression's.
@@ -250,7 +251,7 @@ mod tests {
         assert!((blink - p.blink_latency).abs() < 0.0015, "{blink}");
         let peak = st.wince(&p);
         assert!((peak - 1.0).abs() < 1e-9, "{peak}");
-        run(&mut st, &p, 0.7);
+        run(&mut st, &p, 0.8);
         assert_eq!(st.wince(&p), 0.0, "released");
         assert_eq!(st.blinks, 1);
     }

@@ -346,7 +346,9 @@ impl Aim {
         if self.vor_loss > 0.0 || self.missed != DQuat::IDENTITY {
             let miss = DQuat::from_scaled_axis(self.vor_loss * w * dt);
             let back = (dt / p.vestibular_recalibration).min(1.0);
-            self.missed = (miss * self.missed).normalize().slerp(DQuat::IDENTITY, back);
+            self.missed = (miss * self.missed)
+                .normalize()
+                .slerp(DQuat::IDENTITY, back);
         }
         (self.missed.inverse() * rot, (1.0 - self.vor_loss) * w)
     }

@@ -455,7 +455,11 @@ impl Checker {
                 }
                 Expect::BlowMomentum { by, from, to, .. } => {
                     if inside(s.t, *from, *to) {
-                        for b in s.blows.iter().filter(|b| b.kind == BlowKind::Hit && b.by == *by) {
+                        for b in s
+                            .blows
+                            .iter()
+                            .filter(|b| b.kind == BlowKind::Hit && b.by == *by)
+                        {
                             let j = f64::from(b.impulse);
                             a.hits += 1;
                             a.max = a.max.max(j);
@@ -651,7 +655,9 @@ fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
             from,
             to,
         } => Verdict {
-            what: format!("the head's peak speed in [{at_least}, {at_most}] rad/s in [{from}, {to}] s"),
+            what: format!(
+                "the head's peak speed in [{at_least}, {at_most}] rad/s in [{from}, {to}] s"
+            ),
             measured: format!("peak {:.2} rad/s", a.max),
             value: a.max,
             pass: a.n > 0 && a.max >= *at_least && a.max <= *at_most,
@@ -665,7 +671,9 @@ fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
         } => {
             let lo = a.min.unwrap_or(f64::NAN);
             Verdict {
-                what: format!("hits by {by:?} in [{from}, {to}] s carry [{at_least}, {at_most}] N s"),
+                what: format!(
+                    "hits by {by:?} in [{from}, {to}] s carry [{at_least}, {at_most}] N s"
+                ),
                 measured: if a.hits == 0 {
                     "no hit".into()
                 } else {

@@ -510,7 +510,10 @@ impl Sim {
         let blows = self.blows.step(&self.world, t);
         // A touch is not a blow: only a body arriving with a blow's
         // momentum makes the face react.
-        if let Some(momentum) = self.head_struck().filter(|&m| m >= f64::from(blows::BLOW_IMPULSE)) {
+        if let Some(momentum) = self
+            .head_struck()
+            .filter(|&m| m >= f64::from(blows::BLOW_IMPULSE))
+        {
             self.face_state.struck(&self.model.face, momentum);
         }
         for (g, on) in self.blows.touching().to_vec() {

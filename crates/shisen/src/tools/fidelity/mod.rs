@@ -556,7 +556,7 @@ fn sparring_blinks(model: &Model, rows: &mut Vec<Row>) {
     let tl = jabs(2.5, minutes * 60.0, 5.0);
     let (s, sim) = run_sim(&m, point(0.0, 30.0), &tl, minutes * 60.0);
     // Spontaneous blinks: the reflex blinks to blows and to gloves at the
-    // eyes (F13) are another behaviour than the rate the band describes.
+    // eyes (F9) are another behaviour than the rate the band describes.
     let reflex = sim.face_state.reflex.blinks as usize;
     rows.push(Row {
         name: format!("spontaneous blink rate while sparring (3 min; {reflex} reflex blinks besides)"),

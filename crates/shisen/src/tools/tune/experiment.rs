@@ -142,7 +142,11 @@ pub fn run(group: Group, exp: Experiment, gains: &Gains, dt: f64) -> Response {
         }
         targets[joint.index()] = JointTarget::yaw_pitch(c.angles, c.rates, c.accel);
         // The PD law itself is what is tuned: the neck unbounded.
-        world.apply_control(gains, &targets, (&NeckParams::stiff(), &NeckState::default()));
+        world.apply_control(
+            gains,
+            &targets,
+            (&NeckParams::stiff(), &NeckState::default()),
+        );
         world.step();
         if s >= 0.0 {
             let a = world.joint_angles(joint);
