@@ -8,3 +8,9 @@ bin=target/release/shisen
 [ -x "$bin" ] || cargo build --release
 "$bin" render scenes/gaze_shift_blink.ron --view orbit:0.45,0.32,0.75 --size 400x300 \
   --at 0.3 --until 2.3 --fps 15 --out docs/anim/gaze_shift_blink.png
+
+# A clean 7 m/s jab lands (scenes/jab_snaps_head.ron), seen from the VH's
+# left, ten times slower than real time: the head snaps back and returns,
+# the lids blink, the face winces.
+"$bin" render scenes/jab_snaps_head.ron --view orbit:1.45,0.1,1.1 --size 400x300 \
+  --at 1.06 --until 1.66 --fps 100 --slow 10 --out docs/anim/jab_snaps_head.png

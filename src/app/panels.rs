@@ -246,6 +246,8 @@ fn run(
             view.toggle_view();
         }
     });
+    ui.add(egui::Slider::new(&mut view.knock, 0.0..=1.0).text("view knocked by blows"))
+        .on_hover_text("How far a blow you take turns the first-person view (0 = off)");
     ui.horizontal_wrapped(|ui| {
         let o = &mut view.overlays;
         ui.checkbox(&mut o.gaze_rays, "gaze rays");

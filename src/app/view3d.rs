@@ -20,6 +20,9 @@ pub struct Viewport {
     pub view: View,
     /// Overlay toggles.
     pub overlays: Overlays,
+    /// How much a blow you take knocks the first-person view, 0 (off) to
+    /// 1 (as a head on a neck would turn; [`Camera::knock`]).
+    pub knock: f32,
     /// CPU time of the last frame's scene description (pose, skin, face
     /// deformation), ms.
     pub build_ms: f32,
@@ -37,6 +40,7 @@ impl Viewport {
             blit: Blit::new(&rs.device, rs.target_format),
             view,
             overlays: Overlays::default(),
+            knock: 1.0,
             build_ms: 0.0,
             render_ms: 0.0,
             last: None,
@@ -131,7 +135,10 @@ impl Viewport {
         );
         let aspect = px.0 as f32 / px.1 as f32;
         let started = std::time::Instant::now();
-        let frame = Frame::build(&session.sim, self.view, self.overlays, aspect);
+        let mut frame = Frame::build(&session.sim, self.view, self.overlays, aspect);
+        if self.view == View::First {
+            frame.camera.knock(&session.sim, self.knock);
+        }
         self.build_ms = started.elapsed().as_secs_f32() * 1e3;
         let started = std::time::Instant::now();
         self.renderer

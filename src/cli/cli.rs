@@ -250,9 +250,15 @@ pub enum Command {
         /// `--at` to this time instead of one picture.
         #[arg(long)]
         until: Option<f64>,
-        /// Frames per second of the animation (with `--until`).
+        /// Frames per second of simulated time in the animation (with
+        /// `--until`).
         #[arg(long, default_value_t = 25, requires = "until")]
         fps: u32,
+        /// Slow motion: the animation plays this many times slower than
+        /// real time (1-100; it plays at `fps / slow` frames a second, at
+        /// most 60).
+        #[arg(long, default_value_t = 1, requires = "until")]
+        slow: u32,
     },
 }
 

@@ -227,6 +227,7 @@ fn main() -> ExitCode {
             overlay,
             until,
             fps,
+            slow,
         }) => match render(
             &scene,
             at,
@@ -234,7 +235,7 @@ fn main() -> ExitCode {
             size,
             view,
             &overlay,
-            until.map(|u| (u, fps)),
+            until.map(|u| (u, fps, slow)),
         ) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {

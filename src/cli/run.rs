@@ -23,17 +23,22 @@ pub fn render(
     size: (u32, u32),
     view: View,
     overlay: &[OverlayArg],
-    animation: Option<(f64, u32)>,
+    animation: Option<(f64, u32, u32)>,
 ) -> Result<()> {
     if !(at.is_finite() && at >= 0.0) {
         anyhow::bail!("--at: must be a non-negative number of seconds, got {at}");
     }
-    if let Some((until, fps)) = animation {
+    if let Some((until, fps, slow)) = animation {
+        if !(1..=100).contains(&slow) || fps > 60 * slow {
+            anyhow::bail!(
+                "--slow {slow}: must be 1-100, and --fps / --slow at most 60 (plays at {fps}/{slow} a second)"
+            );
+        }
         if !(until.is_finite() && until > at) {
             anyhow::bail!("--until {until}: must be after --at ({at} s)");
         }
-        if !(1..=60).contains(&fps) {
-            anyhow::bail!("--fps {fps}: must be 1-60");
+        if !(1..=1000).contains(&fps) {
+            anyhow::bail!("--fps {fps}: must be 1-1000");
         }
         if (until - at) * f64::from(fps) > 600.0 {
             anyhow::bail!(
@@ -75,7 +80,7 @@ pub fn render(
     };
     let mut gpu = Headless::new()?;
     let image = gpu.snapshot(&sim, view, overlays, size)?;
-    if let Some((until, fps)) = animation {
+    if let Some((until, fps, slow)) = animation {
         let mut frames = vec![image];
         let n = ((until - at) * f64::from(fps)).round() as usize;
         for k in 1..=n {
@@ -85,8 +90,8 @@ pub fn render(
             }
             frames.push(gpu.snapshot(&sim, view, overlays, size)?);
         }
-        write_apng(&frames, fps, out)?;
-        println!("{} frames at {fps} fps", frames.len());
+        write_apng(&frames, fps, slow, out)?;
+        println!("{} frames at {fps} fps, {slow}x slow", frames.len());
     } else {
         write_png(&image, out)?;
     }
@@ -102,8 +107,14 @@ pub fn render(
     Ok(())
 }
 
-/// Write `frames` as an animated PNG (APNG) playing at `fps`, looping.
-fn write_apng(frames: &[image::RgbaImage], fps: u32, out: &std::path::Path) -> Result<()> {
+/// Write `frames` as an animated PNG (APNG), one frame every `slow / fps`
+/// s, looping.
+fn write_apng(
+    frames: &[image::RgbaImage],
+    fps: u32,
+    slow: u32,
+    out: &std::path::Path,
+) -> Result<()> {
     let (w, h) = frames[0].dimensions();
     let file =
         std::fs::File::create(out).with_context(|| format!("cannot write {}", out.display()))?;
@@ -111,7 +122,7 @@ fn write_apng(frames: &[image::RgbaImage], fps: u32, out: &std::path::Path) -> R
     enc.set_color(png::ColorType::Rgba);
     enc.set_depth(png::BitDepth::Eight);
     enc.set_animated(frames.len() as u32, 0)?;
-    enc.set_frame_delay(1, fps as u16)?;
+    enc.set_frame_delay(slow as u16, fps as u16)?;
     let mut writer = enc.write_header()?;
     for f in frames {
         writer.write_image_data(f.as_raw())?;

@@ -88,6 +88,11 @@ pub struct Camera {
 /// and your own gloves in guard (some 27 deg below your line of sight)
 /// whole in the lower corners, as you would see them.
 const FIRST_FOV_DEG: f32 = 58.0;
+/// Height of a head's centre above its neck's pivot, m (the VH's plan:
+/// `physics::body`), the lever through which a push on the head turns it.
+const NECK_LEVER: f32 = 0.165;
+/// The largest knock of the first-person view, deg.
+pub const MAX_KNOCK_DEG: f32 = 12.0;
 /// Orbit camera field of view.
 const ORBIT_FOV_DEG: f32 = 45.0;
 
@@ -128,6 +133,30 @@ impl Camera {
         }
     }
 
+    /// Knock a first-person camera by the blow its head took: the
+    /// avatar's head pushed `d` off its driven path turns the view as a
+    /// head on a neck would, by `d / NECK_LEVER` (pushed back: the view
+    /// tips up; pushed aside: it turns), scaled by `scale` (0 off, 1 full;
+    /// a setting, for comfort) and never more than [`MAX_KNOCK_DEG`]. The
+    /// drive that pulls the head back is critically damped, so the view
+    /// snaps and returns without shaking.
+    pub fn knock(&mut self, sim: &Sim, scale: f32) {
+        let w = &sim.world;
+        let head = w.part(OpponentPart::Head);
+        let Some(path) = w.drive_target(head) else {
+            return;
+        };
+        let d = w.position(head) - path;
+        let to = self.target - self.eye;
+        let dist = to.length();
+        let f = to / dist.max(1e-6);
+        let right = f.cross(Vec3::Y).normalize_or_zero();
+        let up = right.cross(f);
+        let turn = Vec2::new(d.dot(right), -d.dot(f)) / NECK_LEVER * scale.clamp(0.0, 1.0);
+        let turn = turn.clamp_length_max(MAX_KNOCK_DEG.to_radians());
+        self.target += (right * turn.x + up * turn.y) * dist;
+    }
+
     /// World to view matrix.
     pub fn view(&self) -> Mat4 {
         glam::camera::rh::view::look_at_mat4(self.eye, self.target, Vec3::Y)
@@ -166,6 +195,41 @@ impl Camera {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A blow pushing your head back tips the first-person view up, in
+    /// proportion to the setting and never past the cap; at rest on its
+    /// path the head does not move the view.
+    #[test]
+    fn a_blow_knocks_the_first_person_view() {
+        let mut sim = shisen::scene::LoadedScene::default_scene().sim();
+        for _ in 0..20 {
+            sim.step();
+        }
+        let still = Camera::of(View::First, &sim, 1.5);
+        let mut knocked = still;
+        knocked.knock(&sim, 1.0);
+        assert!(knocked.target.distance(still.target) < 1e-3, "at rest");
+        // A blow: the avatar's head thrown back (+Z, away from the VH) at 2 m/s.
+        let head = sim.world.part(OpponentPart::Head);
+        let h = sim.world.info(head).handle;
+        sim.world.phys.bodies[h].set_linvel(Vec3::Z * 2.0, true);
+        for _ in 0..15 {
+            sim.step();
+        }
+        let cam = Camera::of(View::First, &sim, 1.5);
+        let turn = |scale: f32| {
+            let mut c = cam;
+            c.knock(&sim, scale);
+            let (a, b) = ((cam.target - cam.eye).normalize(), (c.target - c.eye).normalize());
+            (b.y - a.y, a.angle_between(b).to_degrees())
+        };
+        let (up, full) = turn(1.0);
+        assert!(up > 0.0 && full > 2.0, "tips up: {up} {full} deg");
+        let (_, half) = turn(0.5);
+        assert!((half - full / 2.0).abs() < 0.2 * full, "{half} vs {full}");
+        assert_eq!(turn(0.0).1, 0.0);
+        assert!(full <= MAX_KNOCK_DEG + 0.01);
+    }
 
     #[test]
     fn project_and_ray_are_inverse() {

@@ -87,7 +87,11 @@ impl Headless {
         overlays: Overlays,
         size: (u32, u32),
     ) -> Result<image::RgbaImage, RenderError> {
-        let frame = Frame::build(sim, view, overlays, size.0 as f32 / size.1 as f32);
+        let mut frame = Frame::build(sim, view, overlays, size.0 as f32 / size.1 as f32);
+        if view == View::First {
+            // What the user sees: the view knocked by a blow taken.
+            frame.camera.knock(sim, 1.0);
+        }
         self.renderer
             .render(&frame, &sim.model().face.mesh.triangles, size);
         self.renderer.read_rgba()

@@ -108,6 +108,8 @@ pub struct World {
     /// frame (constant; rebuilding it from rapier's principal form every
     /// tick cost 4 % of a step).
     local_inertia: Vec<Mat3>,
+    /// Where each driven body was last asked to be ([`World::drive`]).
+    driven: Vec<(BodyId, Vec3)>,
 }
 
 fn collider_for(shape: Shape, axis_to: Vec3, at: Vec3) -> ColliderBuilder {
@@ -359,6 +361,7 @@ impl World {
             anchor_parent,
             subtree,
             local_inertia,
+            driven: Vec::new(),
         }
     }
 
@@ -578,6 +581,10 @@ impl World {
     /// the next step; the opponent's dynamic parts are pulled by the
     /// bounded spring-damper of [`drive_impulse`].
     pub fn drive(&mut self, body: BodyId, position: Vec3, velocity: Vec3, accel: Vec3) {
+        match self.driven.iter_mut().find(|d| d.0 == body) {
+            Some(d) => d.1 = position,
+            None => self.driven.push((body, position)),
+        }
         let h = self.info(body).handle;
         let dt = self.dt as f32;
         let rb = &mut self.phys.bodies[h];
@@ -591,6 +598,13 @@ impl World {
             target: (position, velocity, accel),
         };
         rb.apply_impulse(drive_impulse(&state, dt), true);
+    }
+
+    /// Where a driven body was last asked to be, if it is driven: a part
+    /// pushed off its path (an avatar's head that took a blow) is that
+    /// far from it.
+    pub fn drive_target(&self, body: BodyId) -> Option<Vec3> {
+        self.driven.iter().find(|d| d.0 == body).map(|d| d.1)
     }
 
     /// Put the VH's root (torso) at `offset` from its rest position by the
