@@ -153,9 +153,23 @@ pub fn region_muscles(
 }
 
 /// Emotion pipeline (face.md 1): contractions for `emotion` at `intensity`
-/// in [0, 1] (clamped): table D values times intensity, both sides.
+/// in [0, 1] (clamped), both sides. With FACS prototypes (F10, the human
+/// profile) each region takes the AUs acting in it from its expression's
+/// prototype, times intensity; without (the seed), table D's values times
+/// intensity.
 pub fn emotion_activation(params: &FaceParams, emotion: Emotion, intensity: f32) -> Activation {
     let s = intensity.clamp(0.0, 1.0);
+    if let Some(protos) = &params.prototypes {
+        let mut au = AuLevels::default();
+        for (region, expr) in Region::ALL.into_iter().zip(emotion.regions()) {
+            for (&unit, &level) in protos.get(&expr).into_iter().flatten() {
+                if unit.region() == region {
+                    au.set(unit, level as f32 * s);
+                }
+            }
+        }
+        return au.activation(params);
+    }
     let mut a = Activation::default();
     for (region, expr) in Region::ALL.into_iter().zip(emotion.regions()) {
         for (m, k) in region_muscles(params, region, expr) {
@@ -255,9 +269,40 @@ mod tests {
         }
     }
 
+    /// F10: the human profile's basic expressions are their FACS
+    /// prototypes: fear raises the brows (AU 1+2) where anger lowers them
+    /// without raising; every channel is the AU level times its reference,
+    /// scaled by intensity; a region takes only its own AUs.
+    #[test]
+    fn facs_prototypes_make_the_basic_expressions() {
+        let p = FaceParams::default_params();
+        let k = |a: &Activation, m: MuscleKind| {
+            let side = if m.bilateral() { Side::Left } else { Side::Centre };
+            a.get(MuscleId { kind: m, side })
+        };
+        let fear = emotion_activation(&p, Emotion::Fear, 1.0);
+        let anger = emotion_activation(&p, Emotion::Anger, 1.0);
+        assert!(k(&fear, MuscleKind::FrontalisInner) > 0.2);
+        assert!(k(&fear, MuscleKind::Risorius) > 0.1, "fear stretches the lips (AU 20)");
+        assert_eq!(k(&anger, MuscleKind::FrontalisInner), 0.0);
+        assert!(k(&anger, MuscleKind::Corrugator) > 0.3);
+        let smile = emotion_activation(&p, Emotion::Happiness, 0.6);
+        let full = p.au_reference(ActionUnit::Au12, MuscleKind::ZygomaticMajor).unwrap();
+        assert!((k(&smile, MuscleKind::ZygomaticMajor) - 0.6 * full as f32).abs() < 1e-6);
+        // Hidden anger (table A: neutral brows, happy eyes, angry mouth):
+        // each region takes only its own expression's AUs.
+        let hidden = emotion_activation(&p, Emotion::HiddenAnger, 1.0);
+        assert_eq!(k(&hidden, MuscleKind::Corrugator), 0.0);
+        assert!(k(&hidden, MuscleKind::OculiOrbital) > 0.0);
+        assert!(k(&hidden, MuscleKind::OrbicularisOris) > 0.0);
+        // The seed's thesis table stays reachable.
+        let thesis = emotion_activation(&FaceParams::thesis_params(), Emotion::Fear, 1.0);
+        assert_eq!(k(&thesis, MuscleKind::FrontalisInner), 0.0);
+    }
+
     #[test]
     fn all_35_emotions_drive_their_regions_muscles_at_table_d() {
-        let p = FaceParams::default_params();
+        let p = FaceParams::thesis_params();
         for intensity in [1.0f32, 0.4] {
             for emo in Emotion::all() {
                 let a = emotion_activation(&p, emo, intensity);

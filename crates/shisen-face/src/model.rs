@@ -347,7 +347,7 @@ mod tests {
     /// Mid upper-lid rise (m) of `emotion` held at full intensity, with
     /// the levator law set by `gain` and `max_raise`.
     fn mid_lid_rise(gain: f64, max_raise: Option<f64>, emotion: Emotion) -> f32 {
-        let mut params = FaceParams::default_params();
+        let mut params = FaceParams::thesis_params();
         params.blink.levator_gain = gain;
         params.blink.levator_max_raise_m = max_raise;
         params.blink.mean_interval_s = 1e6;
@@ -437,7 +437,7 @@ mod tests {
 
     #[test]
     fn state_blinks_in_neutral_and_follows_emotions() {
-        let f = face(32);
+        let f = Face::new(MeshParams { rows: 32 }, FaceParams::thesis_params());
         let mut s = FaceState::default();
         let mut rng = StdRng::seed_from_u64(3);
         let mut closed = 0;

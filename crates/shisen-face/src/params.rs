@@ -190,6 +190,57 @@ pub struct FaceParams {
     /// Reflex blinks and the wince at a blow (defaults if absent).
     #[serde(default)]
     pub reflex: crate::reflex::ReflexParams,
+    /// The basic expressions as FACS prototypes (face.md F10): per
+    /// expression, AU -> level 0-1; each AU drives its muscles at its table
+    /// D reference ([`FaceParams::au_reference`]). The human profile's
+    /// faces are made from these ([`FACS_PROTOTYPES`] if absent); `None`
+    /// (`profile: Seed`) uses table D's expressions directly, as the
+    /// thesis does.
+    #[serde(default = "facs_prototypes")]
+    pub prototypes: Option<BTreeMap<Expression, BTreeMap<ActionUnit, f64>>>,
+}
+
+/// The basic emotions' FACS prototypes (F10): EMFACS (Ekman & Friesen;
+/// as tabulated in Ekman, Friesen & Hager 2002, FACS Investigator's
+/// Guide): happiness 6+12, surprise 1+2+5+26, fear 1+2+4+5+7+20+26, anger
+/// 4+5+7+23, sadness 1+4+15, disgust 9+10+15+16 (9 or 10 with 15 or 16;
+/// Du, Tao & Martinez 2014, PNAS 111:E1454, find 9 and 10 in people's
+/// disgust). Levels are apex intensities, FACS's C-E (0.6-1.0), our
+/// reading; jaw drop 26 is small in happiness (lips parted, 25, which the
+/// rig has no channel for).
+pub const FACS_PROTOTYPES: [(Expression, &[(ActionUnit, f64)]); 6] = {
+    use ActionUnit::*;
+    [
+        (Expression::Happiness, &[(Au6, 0.8), (Au12, 1.0), (Au26, 0.25)]),
+        (Expression::Surprise, &[(Au1, 1.0), (Au2, 1.0), (Au5, 0.8), (Au26, 0.8)]),
+        (
+            Expression::Fear,
+            &[
+                (Au1, 1.0),
+                (Au2, 0.7),
+                (Au4, 0.45),
+                (Au5, 1.0),
+                (Au7, 0.3),
+                (Au20, 1.0),
+                (Au26, 0.45),
+            ],
+        ),
+        (Expression::Anger, &[(Au4, 1.0), (Au5, 0.6), (Au7, 0.9), (Au23, 1.0)]),
+        (Expression::Sadness, &[(Au1, 1.0), (Au4, 0.35), (Au15, 1.0)]),
+        (
+            Expression::Disgust,
+            &[(Au9, 1.0), (Au10, 1.0), (Au15, 0.6), (Au16, 0.5)],
+        ),
+    ]
+};
+
+fn facs_prototypes() -> Option<BTreeMap<Expression, BTreeMap<ActionUnit, f64>>> {
+    Some(
+        FACS_PROTOTYPES
+            .iter()
+            .map(|(e, aus)| (*e, aus.iter().copied().collect()))
+            .collect(),
+    )
 }
 
 /// How the lips hold together over an opening jaw (O1,
@@ -266,6 +317,15 @@ impl FaceParams {
     /// The embedded default (`scenes/face/muscles.ron`).
     pub fn default_params() -> Self {
         Self::from_ron(DEFAULT_RON).expect("embedded scenes/face/muscles.ron is valid")
+    }
+
+    /// The shipped database with the thesis's expressions (table D, no
+    /// FACS prototypes): what `profile: Seed` and the table's own tests use.
+    pub fn thesis_params() -> FaceParams {
+        FaceParams {
+            prototypes: None,
+            ..Self::default_params()
+        }
     }
 
     /// Check every value against its plausible range and the tables for

@@ -454,7 +454,7 @@ mod tests {
     fn pressed_lips_close_over_a_small_opening() {
         for rows in [32, 48, 100] {
             let mesh = HeadMesh::generate(MeshParams { rows });
-            let a = emotion_activation(&FaceParams::default_params(), Emotion::Anger, 1.0);
+            let a = emotion_activation(&FaceParams::thesis_params(), Emotion::Anger, 1.0);
             let rest = mid_gap(&mesh, &rig_with(&mesh, None), &Activation::default());
             let open = mid_gap(&mesh, &rig_with(&mesh, None), &a);
             let sealed = mid_gap(&mesh, &rig_with(&mesh, Some(0.4)), &a);

@@ -104,7 +104,8 @@ impl Model {
     /// only when neutral, at the thesis's rate whatever the situation), lids
     /// (the thesis's linear lid), skin (it never wrinkles nor spreads a
     /// pull), lips (they part with the jaw whatever orbicularis oris
-    /// does) and reflexes (none: no blink or wince at a blow).
+    /// does), reflexes (none: no blink or wince at a blow) and expressions
+    /// (table D's, not the FACS prototypes).
     pub fn apply_profile(&mut self, profile: Profile) {
         self.params.apply_profile(profile);
         if profile != Profile::Seed {
@@ -120,6 +121,7 @@ impl Model {
         seed.skin.pull_spread_m = 0.0;
         seed.lips.seal_k = None;
         seed.reflex.enabled = false;
+        seed.prototypes = None;
         if seed != self.face.params {
             // The face is shared: rebuilt once here, not per run (the scene
             // loader applies the profile to the face it shares). The rig's
