@@ -275,7 +275,9 @@ pub enum FaceCommand {
         rows: usize,
     },
     /// Render every one of the 35 emotions at full intensity, face view,
-    /// into one captioned contact sheet (PNG).
+    /// into one captioned contact sheet (PNG); with `--basic`, neutral and
+    /// the six basic expressions at full and 60 % intensity, face view and
+    /// three-quarter view.
     Sheet {
         /// Output PNG.
         #[arg(long)]
@@ -286,6 +288,9 @@ pub enum FaceCommand {
         /// Size of one face, WxH pixels.
         #[arg(long, default_value = "220x250", value_parser = parse_size)]
         cell: (u32, u32),
+        /// The basic expressions' sheet instead of the 35 emotions'.
+        #[arg(long)]
+        basic: bool,
     },
     /// Turn per-subject settings (CSV: expression, subject, one column per
     /// muscle) into a muscle database with the thesis's rule (drop values

@@ -21,7 +21,12 @@ pub fn face_cmd(c: FaceCommand) -> Result<()> {
                 face.mesh.triangles.len()
             );
         }
-        FaceCommand::Sheet { out, rows, cell } => sheet(&out, rows, cell)?,
+        FaceCommand::Sheet {
+            out,
+            rows,
+            cell,
+            basic,
+        } => sheet(&out, rows, cell, basic)?,
         FaceCommand::Calibrate { csv, out } => {
             let params = calibrate::calibrate_file(&FaceParams::default_params(), &csv)?;
             std::fs::write(&out, params.to_ron())
@@ -39,29 +44,59 @@ const CAPTION: u32 = 22;
 
 /// Every emotion at full intensity, 1.5 s after a fast onset, from the
 /// face camera, in one captioned grid.
-fn sheet(out: &std::path::Path, rows: usize, cell: (u32, u32)) -> Result<()> {
+fn sheet(out: &std::path::Path, rows: usize, cell: (u32, u32), basic: bool) -> Result<()> {
     use shisen::face::tables::Emotion;
     use shisen::scene::LoadedScene;
     use shisen_app::render::{Headless, Overlays, View, write_png};
     if !(24..=400).contains(&rows) {
         anyhow::bail!("--rows: must be 24-400, got {rows}");
     }
-    let all: Vec<Emotion> = Emotion::all().collect();
+    // (emotion, intensity, view, caption), row by row.
+    let three_quarter = View::Orbit {
+        yaw: 0.65,
+        pitch: 0.05,
+        distance: 0.45,
+    };
+    let all: Vec<(Emotion, f64, View, String)> = if basic {
+        let basics = [
+            Emotion::Neutral,
+            Emotion::Happiness,
+            Emotion::Surprise,
+            Emotion::Fear,
+            Emotion::Sadness,
+            Emotion::Disgust,
+            Emotion::Anger,
+        ];
+        let conditions = [
+            (1.0, View::FACE, "front"),
+            (0.6, View::FACE, "front 60%"),
+            (1.0, three_quarter, "3/4"),
+            (0.6, three_quarter, "3/4 60%"),
+        ];
+        conditions
+            .iter()
+            .flat_map(|&(i, v, c)| basics.map(|e| (e, i, v, format!("{e:?} {c}"))))
+            .collect()
+    } else {
+        Emotion::all()
+            .map(|e| (e, 1.0, View::FACE, format!("{e:?}")))
+            .collect()
+    };
     let n = all.len() as u32;
     let (cw, ch) = (cell.0, cell.1 + CAPTION);
     let grid = (SHEET_COLUMNS, n.div_ceil(SHEET_COLUMNS));
     let mut sheet = image::RgbImage::from_pixel(cw * grid.0, ch * grid.1, image::Rgb([30, 32, 38]));
     let mut gpu = Headless::new()?;
-    for (k, e) in all.iter().enumerate() {
+    for (k, (e, intensity, view, label)) in all.iter().enumerate() {
         let text = format!(
-            "Scene(duration: 2.0, vh: (behaviour: (attacks: false), oculomotor: (fixation: (enabled: false)), face: (rows: {rows})), timeline: [(at: 0.0, do: Emotion(emotion: {e:?}, speed: Fast))])"
+            "Scene(duration: 2.0, vh: (behaviour: (attacks: false), oculomotor: (fixation: (enabled: false)), face: (rows: {rows})), timeline: [(at: 0.0, do: Emotion(emotion: {e:?}, intensity: {intensity}, speed: Fast))])"
         );
         let loaded = LoadedScene::from_str(&text, std::path::Path::new("<sheet>"), None)?;
         let mut sim = loaded.sim();
         while sim.time() < 1.5 {
             sim.step();
         }
-        let face = gpu.snapshot(&sim, View::FACE, Overlays::default(), cell)?;
+        let face = gpu.snapshot(&sim, *view, Overlays::default(), cell)?;
         let (x, y) = ((k as u32 % grid.0) * cw, (k as u32 / grid.0) * ch);
         for (px, py, p) in face.enumerate_pixels() {
             sheet.put_pixel(x + px, y + py, image::Rgb([p[0], p[1], p[2]]));
@@ -70,13 +105,13 @@ fn sheet(out: &std::path::Path, rows: usize, cell: (u32, u32)) -> Result<()> {
             &mut sheet,
             (x + cw / 2) as i32,
             (y + cell.1 + 3) as i32,
-            &format!("{e:?}"),
+            label,
             16,
         )?;
     }
     write_png(&image::DynamicImage::ImageRgb8(sheet).to_rgba8(), out)?;
     println!(
-        "{}: {n} emotions, {}x{} faces, {rows} rows",
+        "{}: {n} faces, {}x{} each, {rows} rows",
         out.display(),
         cell.0,
         cell.1
