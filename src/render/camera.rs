@@ -2,7 +2,7 @@
 
 use glam::{Mat4, Vec2, Vec3, Vec4Swizzles};
 
-use shisen::physics::body::{OpponentPart, Seg};
+use shisen::physics::body::{EYE_FORWARD, OpponentPart, Seg};
 use shisen::sim::Sim;
 
 /// Which camera to render from.
@@ -103,9 +103,13 @@ impl Camera {
         let vh_head = w.pose(Seg::Head).0;
         match view {
             View::First => {
-                let eye = w.pose(w.part(OpponentPart::Head)).0;
+                let head = w.pose(w.part(OpponentPart::Head)).0;
                 // Look at the VH's face (between its eyes), not the head centre.
                 let face = (w.pose(Seg::EyeL).0 + w.pose(Seg::EyeR).0) / 2.0;
+                // From your eyes, in front of your head's centre as the
+                // VH's are of its own: your guard then sits at the bottom
+                // edge of the view, framing it, as a boxer sees his gloves.
+                let eye = head + (face - head).normalize_or_zero() * EYE_FORWARD;
                 Camera {
                     eye,
                     target: face - Vec3::Y * 0.04,
@@ -220,7 +224,10 @@ mod tests {
         let turn = |scale: f32| {
             let mut c = cam;
             c.knock(&sim, scale);
-            let (a, b) = ((cam.target - cam.eye).normalize(), (c.target - c.eye).normalize());
+            let (a, b) = (
+                (cam.target - cam.eye).normalize(),
+                (c.target - c.eye).normalize(),
+            );
             (b.y - a.y, a.angle_between(b).to_degrees())
         };
         let (up, full) = turn(1.0);

@@ -30,6 +30,9 @@ pub enum MeshKey {
     /// The VH's eyelashes ([`Frame::lashes`](crate::render::Frame::lashes), a triangle list in the face
     /// frame).
     Lashes,
+    /// The boxing ring, one static mesh coloured per vertex
+    /// ([`super::ring::mesh`]).
+    Ring,
     /// A left ear ([`super::geometry::ear`]; mirrored for the right).
     Ear,
     /// A tooth's crown: a rounded box of half extent 1
@@ -56,7 +59,8 @@ pub enum Material {
     Plain = 0,
     /// Eyeball: sclera, iris and pupil around the local +Z pole.
     Eye = 1,
-    /// Checkered floor.
+    /// Flat ground lit from above (the ring's canvas): the instance colour
+    /// at one light, nothing computed per pixel.
     Floor = 2,
     /// Skin: wrapped, reddened diffuse and a weak sheen.
     Skin = 3,

@@ -253,21 +253,15 @@ impl Frame {
             color: WHITE,
             material: Material::Hair,
         });
-        draws.extend([
-            Draw {
-                mesh: MeshKey::Floor,
-                model: Mat4::from_scale(Vec3::splat(4.0)),
-                color: WHITE,
-                material: Material::Floor,
-            },
-            // The rigid stand the VH's torso sits on (not a physics body).
-            Draw {
-                mesh: capsule_key(0.5, 0.035),
-                model: Mat4::from_translation(Vec3::new(0.0, 0.5, 0.0)),
-                color: STAND,
-                material: Material::Plain,
-            },
-        ]);
+        // The ring and the hall, last (behind the fighters), with the
+        // rigid stand the VH's torso sits on (not a physics body).
+        draws.push(Draw {
+            mesh: capsule_key(0.5, 0.035),
+            model: Mat4::from_translation(Vec3::new(0.0, 0.5, 0.0)),
+            color: STAND,
+            material: Material::Plain,
+        });
+        draws.extend(super::ring::draws());
         let mut frame = Frame {
             camera,
             draws,

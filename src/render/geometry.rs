@@ -59,12 +59,8 @@ const RINGS: u32 = 24;
 const SEGMENTS: u32 = 32;
 
 /// Surface of revolution about +Y from a profile of (radius, y, normal)
-/// points ordered from the top pole to the bottom pole.
-fn lathe(profile: &[(f32, f32, Vec3)]) -> MeshData {
-    lathe_with(profile, SEGMENTS)
-}
-
-/// [`lathe`] with `segments` steps of longitude.
+/// points ordered from the top pole to the bottom pole, with `segments`
+/// steps of longitude.
 fn lathe_with(profile: &[(f32, f32, Vec3)], segments: u32) -> MeshData {
     let mut m = MeshData::default();
     for &(r, y, n) in profile {
@@ -97,8 +93,15 @@ pub fn sphere() -> MeshData {
 /// Capsule along local Y: a cylinder of half-length `half_height` capped by
 /// hemispheres of `radius` (the rapier/parry convention).
 pub fn capsule(half_height: f32, radius: f32) -> MeshData {
+    capsule_with(half_height, radius, RINGS, SEGMENTS)
+}
+
+/// A capsule with `rings` latitude bands over its two caps and `segments`
+/// around: coarse ones for long, thin scenery (a software rasteriser pays
+/// for every long, thin triangle across the picture).
+pub fn capsule_with(half_height: f32, radius: f32, rings: u32, segments: u32) -> MeshData {
     let mut profile = Vec::new();
-    let half = RINGS / 2;
+    let half = rings / 2;
     for i in 0..=half {
         let theta = PI / 2.0 * (1.0 - i as f32 / half as f32); // pi/2 .. 0
         let n = Vec3::new(theta.cos(), theta.sin(), 0.0);
@@ -109,7 +112,7 @@ pub fn capsule(half_height: f32, radius: f32) -> MeshData {
         let n = Vec3::new(theta.cos(), theta.sin(), 0.0);
         profile.push((radius * n.x, -half_height + radius * n.y, n));
     }
-    lathe(&profile)
+    lathe_with(&profile, segments)
 }
 
 /// Rounded box of half extent 1: the superellipsoid

@@ -470,6 +470,7 @@ impl Renderer {
         r.upload(MeshKey::Cube, &geometry::cube());
         r.upload(MeshKey::Floor, &geometry::floor());
         r.upload(MeshKey::Ear, &geometry::ear());
+        r.upload(MeshKey::Ring, &super::ring::mesh());
         // Crowns: boxy, with edges rounded over about a fifth of their size.
         r.upload(MeshKey::Tooth, &geometry::rounded_box(5.0));
         r

@@ -16,6 +16,7 @@ mod face_parts;
 mod frame;
 pub mod geometry;
 mod gpu;
+mod ring;
 
 pub use camera::{Camera, View};
 pub use draw::{Draw, Label, LineVertex, Material, MeshKey};

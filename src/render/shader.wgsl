@@ -1,6 +1,6 @@
 // Lit meshes (key + fill + ambient, Lambert + Blinn-Phong specular), a
 // procedural eyeball (sclera, iris, pupil about the local +Z pole), a
-// checkered floor, and unlit overlay lines.
+// flat-lit ground, and unlit overlay lines.
 
 struct Globals {
     view_proj: mat4x4<f32>,
@@ -213,13 +213,10 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
 fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
     let material = u32(inst.params.x + 0.5);
     if (material == 2u) {
-        // The floor: a flat, matte checker lit from above; its light is
-        // the same everywhere, so nothing per pixel but the checker (it
-        // covers most of the picture).
-        let cell = floor(v.world.x * 2.0) + floor(v.world.z * 2.0);
-        let checker = cell - 2.0 * floor(cell * 0.5);
-        let base = mix(vec3<f32>(0.34, 0.34, 0.36), vec3<f32>(0.42, 0.42, 0.44), checker);
-        return vec4<f32>(base * g.floor_light.x, 1.0);
+        // Flat ground lit from above (the ring's canvas): its light is the
+        // same everywhere, so nothing per pixel but the colour (it covers
+        // a third of the picture).
+        return vec4<f32>(inst.color.rgb * v.color.rgb * g.floor_light.x, 1.0);
     }
     let view_dir = normalize(g.camera.xyz - v.world);
     var n = normalize(v.normal);

@@ -277,17 +277,26 @@ mod tests {
     fn facs_prototypes_make_the_basic_expressions() {
         let p = FaceParams::default_params();
         let k = |a: &Activation, m: MuscleKind| {
-            let side = if m.bilateral() { Side::Left } else { Side::Centre };
+            let side = if m.bilateral() {
+                Side::Left
+            } else {
+                Side::Centre
+            };
             a.get(MuscleId { kind: m, side })
         };
         let fear = emotion_activation(&p, Emotion::Fear, 1.0);
         let anger = emotion_activation(&p, Emotion::Anger, 1.0);
         assert!(k(&fear, MuscleKind::FrontalisInner) > 0.2);
-        assert!(k(&fear, MuscleKind::Risorius) > 0.1, "fear stretches the lips (AU 20)");
+        assert!(
+            k(&fear, MuscleKind::Risorius) > 0.1,
+            "fear stretches the lips (AU 20)"
+        );
         assert_eq!(k(&anger, MuscleKind::FrontalisInner), 0.0);
         assert!(k(&anger, MuscleKind::Corrugator) > 0.3);
         let smile = emotion_activation(&p, Emotion::Happiness, 0.6);
-        let full = p.au_reference(ActionUnit::Au12, MuscleKind::ZygomaticMajor).unwrap();
+        let full = p
+            .au_reference(ActionUnit::Au12, MuscleKind::ZygomaticMajor)
+            .unwrap();
         assert!((k(&smile, MuscleKind::ZygomaticMajor) - 0.6 * full as f32).abs() < 1e-6);
         // Hidden anger (table A: neutral brows, happy eyes, angry mouth):
         // each region takes only its own expression's AUs.

@@ -211,8 +211,14 @@ pub struct FaceParams {
 pub const FACS_PROTOTYPES: [(Expression, &[(ActionUnit, f64)]); 6] = {
     use ActionUnit::*;
     [
-        (Expression::Happiness, &[(Au6, 0.8), (Au12, 1.0), (Au26, 0.25)]),
-        (Expression::Surprise, &[(Au1, 1.0), (Au2, 1.0), (Au5, 0.8), (Au26, 0.8)]),
+        (
+            Expression::Happiness,
+            &[(Au6, 0.8), (Au12, 1.0), (Au26, 0.25)],
+        ),
+        (
+            Expression::Surprise,
+            &[(Au1, 1.0), (Au2, 1.0), (Au5, 0.8), (Au26, 0.8)],
+        ),
         (
             Expression::Fear,
             &[
@@ -225,7 +231,10 @@ pub const FACS_PROTOTYPES: [(Expression, &[(ActionUnit, f64)]); 6] = {
                 (Au26, 0.45),
             ],
         ),
-        (Expression::Anger, &[(Au4, 1.0), (Au5, 0.6), (Au7, 0.9), (Au23, 1.0)]),
+        (
+            Expression::Anger,
+            &[(Au4, 1.0), (Au5, 0.6), (Au7, 0.9), (Au23, 1.0)],
+        ),
         (Expression::Sadness, &[(Au1, 1.0), (Au4, 0.35), (Au15, 1.0)]),
         (
             Expression::Disgust,

@@ -1,0 +1,176 @@
+//! The boxing ring: canvas, apron and platform, corner posts and pads,
+//! four ropes, in a dim hall (the clear colour). Static scenery, drawn with the
+//! shared primitives (no physics: the fighters do not reach the ropes).
+//!
+//! Sizes follow amateur rules (AIBA Technical & Competition Rules): a
+//! ring 4.9-6.1 m square inside the ropes (here 5.5 m), four ropes 40.6,
+//! 71.1, 101.6 and 132.1 cm above the canvas, 3-5 cm thick, an apron of
+//! at least 0.5 m outside them, the platform 0.91-1.22 m above the floor
+//! (here 1.0 m).
+
+use glam::{Mat3, Mat4, Quat, Vec3};
+
+use super::draw::{Draw, Material, MeshKey};
+use super::geometry::{self, MeshData};
+
+/// Half the ring's side inside the ropes, m.
+pub const HALF: f32 = 2.75;
+/// Centre of the ring, world (midway between the fighters at rest).
+pub const CENTRE: Vec3 = Vec3::new(0.0, 0.0, 0.46);
+/// Heights of the ropes above the canvas, m.
+const ROPES: [f32; 4] = [0.406, 0.711, 1.016, 1.321];
+/// Rope radius, m.
+const ROPE_R: f32 = 0.02;
+/// Corner post: height above the canvas and radius, m.
+const POST: (f32, f32) = (1.40, 0.045);
+/// The platform's height above the hall's floor, m.
+const PLATFORM: f32 = 1.0;
+/// The apron's width outside the posts, m.
+const APRON: f32 = 0.6;
+
+const CANVAS: [f32; 4] = [0.42, 0.50, 0.62, 1.0];
+const SKIRT: [f32; 4] = [0.05, 0.07, 0.16, 1.0];
+const ROPE: [f32; 4] = [0.85, 0.85, 0.85, 1.0];
+const ROPE_RED: [f32; 4] = [0.70, 0.06, 0.06, 1.0];
+const POST_METAL: [f32; 4] = [0.12, 0.12, 0.13, 1.0];
+/// Corner pads: the VH's corner red, yours blue, the neutral corners white.
+const PADS: [[f32; 4]; 4] = [
+    [0.70, 0.05, 0.05, 1.0],
+    [0.85, 0.85, 0.85, 1.0],
+    [0.06, 0.16, 0.70, 1.0],
+    [0.85, 0.85, 0.85, 1.0],
+];
+
+/// One piece of the ring: a mesh placed by `model`, in one colour.
+struct Piece {
+    mesh: fn() -> MeshData,
+    capsule: Option<(f32, f32)>,
+    model: Mat4,
+    color: [f32; 4],
+}
+
+/// A box of half extents `half` centred at `at` (the cube mesh spans +-1).
+fn cube(at: Vec3, half: Vec3, color: [f32; 4]) -> Piece {
+    Piece {
+        mesh: geometry::cube,
+        capsule: None,
+        model: Mat4::from_scale_rotation_translation(half, Quat::IDENTITY, at),
+        color,
+    }
+}
+
+/// A capsule from `a` to `b` of radius `r`.
+fn bar(a: Vec3, b: Vec3, r: f32, color: [f32; 4]) -> Piece {
+    let d = b - a;
+    let half = (d.length() / 2.0 - r).max(0.001);
+    Piece {
+        mesh: geometry::cube,
+        capsule: Some((half, r)),
+        model: Mat4::from_rotation_translation(
+            Quat::from_rotation_arc(Vec3::Y, d.normalize()),
+            (a + b) / 2.0,
+        ),
+        color,
+    }
+}
+
+/// The ring but its canvas as one mesh with its colours in the vertices:
+/// static scenery in a single draw call.
+pub fn mesh() -> MeshData {
+    let mut out = MeshData::default();
+    for p in pieces() {
+        let m = match p.capsule {
+            Some((h, r)) => geometry::capsule_with(h, r, 4, 8),
+            None => (p.mesh)(),
+        };
+        let normal = Mat3::from_mat4(p.model).inverse().transpose();
+        let base = out.vertices.len() as u32;
+        out.vertices.extend(m.vertices.iter().map(|v| {
+            let mut v = *v;
+            v.pos = p.model.transform_point3(Vec3::from(v.pos)).to_array();
+            v.normal = (normal * Vec3::from(v.normal)).normalize().to_array();
+            v.color = p.color;
+            v
+        }));
+        out.indices.extend(m.indices.iter().map(|i| i + base));
+    }
+    out
+}
+
+/// The ring's draws: its mesh ([`MeshKey::Ring`], uploaded once), then
+/// the canvas, flat-lit (it covers a third of the picture: lit per pixel,
+/// it cost a fifth of the frame rate on the software rasteriser).
+pub fn draws() -> [Draw; 2] {
+    let side = HALF + APRON;
+    [
+        Draw {
+            mesh: MeshKey::Ring,
+            model: Mat4::IDENTITY,
+            color: [1.0; 4],
+            material: Material::Plain,
+        },
+        Draw {
+            mesh: MeshKey::Floor,
+            model: Mat4::from_scale_rotation_translation(
+                Vec3::new(side, 1.0, side),
+                Quat::IDENTITY,
+                CENTRE,
+            ),
+            color: CANVAS,
+            material: Material::Floor,
+        },
+    ]
+}
+
+/// The ring's pieces.
+fn pieces() -> Vec<Piece> {
+    let mut out = Vec::new();
+    let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+        .map(|(x, z)| CENTRE + Vec3::new(x * HALF, 0.0, z * HALF));
+    for (k, &c) in corners.iter().enumerate() {
+        out.push(bar(c, c + Vec3::Y * POST.0, POST.1, POST_METAL));
+        // The pad: a padded column over the ropes' corner, facing the ring.
+        let inward = (CENTRE - c).normalize() * 0.08;
+        out.push(cube(
+            c + inward + Vec3::Y * 0.86,
+            Vec3::new(0.08, 0.52, 0.08),
+            PADS[k],
+        ));
+        let next = corners[(k + 1) % 4];
+        for (i, h) in ROPES.into_iter().enumerate() {
+            let up = Vec3::Y * h;
+            let color = if i == ROPES.len() - 1 { ROPE_RED } else { ROPE };
+            out.push(bar(c + up, next + up, ROPE_R, color));
+        }
+    }
+    let side = HALF + APRON;
+    // The platform's skirt below the canvas (drawn apart: [`canvas`]).
+    out.push(cube(
+        CENTRE - Vec3::Y * (0.04 + (PLATFORM - 0.04) / 2.0),
+        Vec3::new(side, (PLATFORM - 0.04) / 2.0, side),
+        SKIRT,
+    ));
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The fighters stand inside the ropes, on the canvas; four posts, four
+    /// ropes a side.
+    #[test]
+    fn the_ring_holds_the_fighters() {
+        let d = pieces();
+        let bars = d.iter().filter(|x| x.capsule.is_some()).count();
+        assert_eq!(bars, 4 + 16, "four posts, sixteen ropes");
+        let m = mesh();
+        assert!(m.indices.iter().all(|&i| (i as usize) < m.vertices.len()));
+        let top = m.vertices.iter().map(|v| v.pos[1]).fold(f32::MIN, f32::max);
+        assert!((top - POST.0).abs() < 0.05, "posts' tops: {top}");
+        for fighter in [Vec3::ZERO, Vec3::new(0.0, 0.0, 0.92)] {
+            let off = (fighter - CENTRE).abs();
+            assert!(off.x < HALF - 1.0 && off.z < HALF - 1.0);
+        }
+    }
+}
