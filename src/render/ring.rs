@@ -80,7 +80,8 @@ pub fn mesh() -> MeshData {
     let mut out = MeshData::default();
     for p in pieces() {
         let m = match p.capsule {
-            Some((h, r)) => geometry::capsule_with(h, r, 4, 8),
+            // Ropes and posts a few pixels wide: six sides are round enough.
+            Some((h, r)) => geometry::capsule_with(h, r, 2, 6),
             None => (p.mesh)(),
         };
         let normal = Mat3::from_mat4(p.model).inverse().transpose();
@@ -97,18 +98,15 @@ pub fn mesh() -> MeshData {
     out
 }
 
-/// The ring's draws: its mesh ([`MeshKey::Ring`], uploaded once), then
-/// the canvas, flat-lit (it covers a third of the picture: lit per pixel,
-/// it cost a fifth of the frame rate on the software rasteriser).
+/// The ring's draws: the canvas, flat-lit (it covers a third of the
+/// picture), then the rest as one mesh ([`MeshKey::Ring`], uploaded once).
+/// The canvas goes first so the platform's top face under it fails the
+/// depth test before it is shaded: drawn the other way round, a software
+/// rasteriser lit that hidden face at every canvas pixel (a seventh of the
+/// frame rate).
 pub fn draws() -> [Draw; 2] {
     let side = HALF + APRON;
     [
-        Draw {
-            mesh: MeshKey::Ring,
-            model: Mat4::IDENTITY,
-            color: [1.0; 4],
-            material: Material::Plain,
-        },
         Draw {
             mesh: MeshKey::Floor,
             model: Mat4::from_scale_rotation_translation(
@@ -118,6 +116,12 @@ pub fn draws() -> [Draw; 2] {
             ),
             color: CANVAS,
             material: Material::Floor,
+        },
+        Draw {
+            mesh: MeshKey::Ring,
+            model: Mat4::IDENTITY,
+            color: [1.0; 4],
+            material: Material::Plain,
         },
     ]
 }

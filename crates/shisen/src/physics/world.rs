@@ -110,6 +110,9 @@ pub struct World {
     local_inertia: Vec<Mat3>,
     /// Where each driven body was last asked to be ([`World::drive`]).
     driven: Vec<(BodyId, Vec3)>,
+    /// The root's offsets from rest: two steps ago, last step, next step
+    /// (its planned acceleration, for the joints' feed-forward).
+    root_path: [Vec3; 3],
 }
 
 fn collider_for(shape: Shape, axis_to: Vec3, at: Vec3) -> ColliderBuilder {
@@ -362,6 +365,7 @@ impl World {
             subtree,
             local_inertia,
             driven: Vec::new(),
+            root_path: [Vec3::ZERO; 3],
         }
     }
 
@@ -516,16 +520,29 @@ impl World {
         total
     }
 
-    /// Torque that holds segment `s`'s subtree against gravity about its pivot.
-    pub fn gravity_torque(&self, s: Seg) -> Vec3 {
+    /// Torque that holds segment `s`'s subtree against gravity about its
+    /// pivot while the root moves with acceleration `root_accel`: the
+    /// subtree is held against the effective gravity `g - a` of the
+    /// accelerating trunk (the root's own movement, planned, is known to
+    /// the controller as a person's own movement is: its postural
+    /// adjustment is feed-forward, not a reflex to the head lagging).
+    pub fn gravity_torque(&self, s: Seg, root_accel: Vec3) -> Vec3 {
         let pivot = self.pivot(s);
-        let g = self.phys.gravity;
+        let g = self.phys.gravity - root_accel;
         let mut tau = Vec3::ZERO;
         for &b in &self.subtree[s.index()] {
             let rb = self.rb(b);
             tau -= (rb.center_of_mass() - pivot).cross(g * rb.mass());
         }
         tau
+    }
+
+    /// The root's planned acceleration over the next step (from the
+    /// offsets given to [`World::set_root_offset`]), m/s^2.
+    pub fn root_accel(&self) -> Vec3 {
+        let dt = self.dt as f32;
+        let [a, b, c] = self.root_path;
+        (c - 2.0 * b + a) / (dt * dt)
     }
 
     /// The measured state of segment `s`'s joint (it must have a parent).
@@ -550,6 +567,7 @@ impl World {
         neck: (&NeckParams, &NeckState),
     ) {
         let dt = self.dt as f32;
+        let root_accel = self.root_accel();
         let mut impulses = Vec::with_capacity(self.plan.segments.len());
         for (s, segm) in Seg::ALL.into_iter().zip(&self.plan.segments) {
             let (Some(p), Some(group)) = (segm.parent, segm.group) else {
@@ -562,7 +580,7 @@ impl World {
                 _ => pd_torque(gains.group(group), target, &state, dt),
             };
             if gains.gravity_compensation {
-                tau += self.gravity_torque(s);
+                tau += self.gravity_torque(s, root_accel);
             }
             impulses.push((p, s, tau * dt));
         }
@@ -610,6 +628,7 @@ impl World {
     /// Put the VH's root (torso) at `offset` from its rest position by the
     /// end of the next step (a lunge; the joints carry the rest along).
     pub fn set_root_offset(&mut self, offset: Vec3) {
+        self.root_path = [self.root_path[1], self.root_path[2], offset];
         let rest = self.plan.segments[Seg::Torso.index()].centre;
         let h = self.info(Seg::Torso).handle;
         self.phys.bodies[h].set_next_kinematic_translation(rest + offset);

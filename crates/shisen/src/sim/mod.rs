@@ -486,9 +486,15 @@ impl Sim {
         let p = &self.model.params;
         let head = &self.targets[Seg::Head.index()];
         let stretch = neck::stretch(head, &self.world.joint_state(Seg::Head));
-        // The VH braces while it guards: it has seen the punch coming
-        // (through vision's and the guard's latencies).
-        let bracing = self.behaviour.action() == ActionKind::Guard;
+        // The VH braces while it guards (it has seen the punch coming,
+        // through vision's and the guard's latencies) and while it attacks:
+        // postural muscles are set before a voluntary movement of one's own
+        // (anticipatory postural adjustments), so its lunge into a punch
+        // does not throw its head back.
+        let bracing = matches!(
+            self.behaviour.action(),
+            ActionKind::Guard | ActionKind::Attack
+        );
         self.neck
             .step(&p.neck, stretch, bracing, self.time(), self.model.dt);
         self.world
