@@ -94,14 +94,7 @@ impl Default for ReflexParams {
     }
 }
 
-macro_rules! ranged {
-    ($($name:ident: $lo:expr, $hi:expr;)*) => {$(
-        fn $name<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-            shisen_gaze::util::check::in_range(d, $lo, $hi)
-        }
-    )*};
-}
-ranged! {
+shisen_gaze::ranged_fields! {
     latency: 0.0, 1.0;
     duration: 0.001, 5.0;
     hold: 0.0, 5.0;

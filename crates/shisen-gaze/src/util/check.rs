@@ -57,6 +57,19 @@ pub fn in_range<'de, D: Deserializer<'de>>(d: D, lo: f64, hi: f64) -> Result<f64
     Ok(v)
 }
 
+/// Field checks with fixed bounds, one function per line:
+/// `ranged_fields! { latency: 0.0, 1.0; }` defines
+/// `fn latency(d) -> Result<f64, _>` checking [`in_range`] `[0, 1]`, for
+/// `#[serde(deserialize_with = "latency")]`.
+#[macro_export]
+macro_rules! ranged_fields {
+    ($($name:ident: $lo:expr, $hi:expr;)*) => {$(
+        fn $name<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+            $crate::util::check::in_range(d, $lo, $hi)
+        }
+    )*};
+}
+
 /// Three finite numbers `[x, y, z]` (positions, velocities), as `glam::DVec3`.
 pub fn vec3<'de, D: Deserializer<'de>>(d: D) -> Result<glam::DVec3, D::Error> {
     let v = <[f64; 3]>::deserialize(d)?;

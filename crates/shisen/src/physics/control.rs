@@ -200,16 +200,9 @@ pub fn pd_torque(g: &JointGains, target: &JointTarget, s: &JointState, dt: f32) 
 /// The feedback part of [`pd_torque`]: the stable-PD spring and damper,
 /// `I (I + kd dt)^-1 [kp (e + dt w_err) + kd w_err]`, world frame.
 pub fn pd_feedback(g: &JointGains, target: &JointTarget, s: &JointState, dt: f32) -> Vec3 {
-    let q_rel = s.parent_rot.inverse() * s.child_rot;
-    let mut q_err = target.rotation * q_rel.inverse();
-    if q_err.w < 0.0 {
-        q_err = -q_err; // shortest way round
-    }
-    let e = s.parent_rot * q_err.to_scaled_axis();
-    let w_ref = s.parent_rot * target.velocity;
+    let (e, w_err) = joint_errors(target, s);
     let kp = g.kp as f32;
     let kd = g.kd as f32;
-    let w_err = w_ref - s.rel_angvel;
     let pd = kp * (e + dt * w_err) + kd * w_err;
     let implicit = s.inertia + Mat3::from_diagonal(Vec3::splat(kd * dt));
     if implicit.determinant().abs() > f32::MIN_POSITIVE {
@@ -217,6 +210,20 @@ pub fn pd_feedback(g: &JointGains, target: &JointTarget, s: &JointState, dt: f32
     } else {
         pd // no inertia to speak of: plain PD
     }
+}
+
+/// The joint's errors, world frame: the rotation vector taking the
+/// child's relative rotation to the target's (the shortest way round),
+/// and the target's relative angular velocity minus the child's.
+pub fn joint_errors(target: &JointTarget, s: &JointState) -> (Vec3, Vec3) {
+    let q_rel = s.parent_rot.inverse() * s.child_rot;
+    let mut q_err = target.rotation * q_rel.inverse();
+    if q_err.w < 0.0 {
+        q_err = -q_err; // shortest way round
+    }
+    let e = s.parent_rot * q_err.to_scaled_axis();
+    let w_err = s.parent_rot * target.velocity - s.rel_angvel;
+    (e, w_err)
 }
 
 /// The feed-forward part of [`pd_torque`]: `ff I a_ref`, world frame.

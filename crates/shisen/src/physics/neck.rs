@@ -31,7 +31,9 @@
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
-use crate::physics::control::{JointGains, JointState, JointTarget, feedforward, pd_feedback};
+use crate::physics::control::{
+    JointGains, JointState, JointTarget, feedforward, joint_errors, pd_feedback,
+};
 
 /// The neck's impact response (scene `vh.neck`). Torques in N m, angles
 /// in rad, times in s.
@@ -120,14 +122,7 @@ impl Default for NeckParams {
     }
 }
 
-macro_rules! ranged {
-    ($($name:ident: $lo:expr, $hi:expr;)*) => {$(
-        fn $name<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-            shisen_gaze::util::check::in_range(d, $lo, $hi)
-        }
-    )*};
-}
-ranged! {
+shisen_gaze::ranged_fields! {
     stiffness: 0.0, 1000.0;
     stiffening: 0.01, 3.2;
     damping: 0.0, 100.0;
@@ -212,7 +207,7 @@ impl NeckState {
 pub fn intrinsic(p: &NeckParams, st: &NeckState, target: &JointTarget, s: &JointState) -> Vec3 {
     let k = (p.stiffness * st.scale(p)) as f32;
     let b = (p.damping * st.scale(p)) as f32;
-    let (e, w_err) = errors(target, s);
+    let (e, w_err) = joint_errors(target, s);
     let es = p.stiffening_angle as f32;
     k * e * (1.0 + e.length_squared() / (es * es)) + b * w_err
 }
@@ -238,22 +233,9 @@ pub fn neck_torque(
     int + (fb - int).clamp_length_max(st.bound(p) as f32) + ff
 }
 
-/// The rotation vector from the child's posture to the commanded one and
-/// the angular velocity error, world frame.
-fn errors(target: &JointTarget, s: &JointState) -> (Vec3, Vec3) {
-    let q_rel = s.parent_rot.inverse() * s.child_rot;
-    let mut q_err = target.rotation * q_rel.inverse();
-    if q_err.w < 0.0 {
-        q_err = -q_err;
-    }
-    let e = s.parent_rot * q_err.to_scaled_axis();
-    let w_err = s.parent_rot * target.velocity - s.rel_angvel;
-    (e, w_err)
-}
-
 /// The neck's stretch: its relative angular speed beyond the command's, rad/s.
 pub fn stretch(target: &JointTarget, s: &JointState) -> f64 {
-    f64::from(errors(target, s).1.length())
+    f64::from(joint_errors(target, s).1.length())
 }
 
 #[cfg(test)]
