@@ -320,8 +320,8 @@ fn attention(ui: &mut egui::Ui, s: &Session) {
     let pers = &s.sim.params().personality;
     let top_down = match last.action {
         shisen_gaze::behaviour::ActionKind::Idle => pers.a_face,
-        shisen_gaze::behaviour::ActionKind::Guard => pers.a_guard,
         shisen_gaze::behaviour::ActionKind::Attack => pers.a_attack,
+        _ => pers.a_guard,
     };
     ui.horizontal(|ui| {
         ui.add_sized([90.0, 16.0], egui::Label::new("top-down"));

@@ -3,6 +3,13 @@
 //! and the neck's range of motion (gaze.md 9, after Takagi & Takeda).
 //! Metres, kilograms, degrees.
 
+/// The trunk.
+pub mod trunk {
+    /// The waist joint (the trunk's pivot, about L5/S1) at rest, world
+    /// `[x, y, z]`, m.
+    pub const WAIST: [f64; 3] = [0.0, 1.0, 0.0];
+}
+
 /// The arms (the body plan's, shared with the punch planner).
 pub mod arm {
     /// Upper arm length (shoulder to elbow), m.

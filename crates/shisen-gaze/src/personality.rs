@@ -24,6 +24,18 @@ pub struct Personality {
     /// Attention amount at which the head moves most (M8); must exceed `a1`.
     #[serde(deserialize_with = "amount")]
     pub a2: f64,
+    /// Share of punches at the head the VH evades (slips, ducks, leans
+    /// away from) rather than blocks, 0-1. Default 0.7. A strong boxer
+    /// slips and counters; a weak one covers up.
+    #[serde(deserialize_with = "share")]
+    pub evade: f64,
+    /// Chance the VH counters out of a slip, 0-1. Default 0.3.
+    #[serde(deserialize_with = "share")]
+    pub counter: f64,
+}
+
+fn share<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    crate::util::check::in_range(d, 0.0, 1.0)
 }
 
 /// An attention amount: 0-100 (the seed's amounts are 1.5 and 3; saliency
@@ -44,6 +56,8 @@ impl Default for Personality {
             a_guard: 3.0,
             a1: 0.0,
             a2: 3.0,
+            evade: 0.7,
+            counter: 0.3,
         }
     }
 }

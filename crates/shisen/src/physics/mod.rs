@@ -1,11 +1,12 @@
 //! The body and its physics: the static body plan ([`body`]), the rapier
 //! world built from it ([`world`]), the opponent's driven parts
 //! ([`opponent`]), the PD joint control and gains ([`control`]), the neck
-//! under impact ([`neck`]) and the gains' plausibility for the body
+//! under impact ([`neck`]), the legs, footwork and waist ([`lower`]) and the gains' plausibility for the body
 //! ([`plausible`]).
 
 pub mod body;
 pub mod control;
+pub mod lower;
 pub mod neck;
 pub mod opponent;
 pub mod plausible;

@@ -628,10 +628,19 @@ impl World {
     /// Put the VH's root (torso) at `offset` from its rest position by the
     /// end of the next step (a lunge; the joints carry the rest along).
     pub fn set_root_offset(&mut self, offset: Vec3) {
+        self.set_root_pose(offset, Quat::IDENTITY);
+    }
+
+    /// Put the VH's root (the trunk) by the end of the next step: its pivot
+    /// (the waist joint) moved by `offset` from rest and the trunk turned
+    /// by `rotation` about it (the lower body's stepping, the waist's turn
+    /// and bend; the joints carry the rest along).
+    pub fn set_root_pose(&mut self, offset: Vec3, rotation: Quat) {
         self.root_path = [self.root_path[1], self.root_path[2], offset];
-        let rest = self.plan.segments[Seg::Torso.index()].centre;
+        let s = &self.plan.segments[Seg::Torso.index()];
+        let at = s.pivot + offset + rotation * (s.centre - s.pivot);
         let h = self.info(Seg::Torso).handle;
-        self.phys.bodies[h].set_next_kinematic_translation(rest + offset);
+        self.phys.bodies[h].set_next_kinematic_position(Pose::from_parts(at, rotation));
     }
 
     /// Advance the physics by one fixed step.

@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use serde::{Deserialize, Serialize};
 
 use crate::physics::control::Gains;
+use crate::physics::lower::BodyParams;
 use crate::physics::neck::NeckParams;
 use crate::sim::expect::Expect;
 use crate::sim::timeline::Event;
@@ -35,6 +36,8 @@ pub struct VhParams {
     pub oculomotor: OculomotorParams,
     /// The neck under impact: intrinsic impedance, tone, bracing, reflex.
     pub neck: NeckParams,
+    /// The lower body: stance, stepping, the waist's law and strength.
+    pub body: BodyParams,
     /// The face.
     pub face: FaceConfig,
 }
@@ -48,6 +51,7 @@ impl VhParams {
         self.attention = p.attention.clone();
         self.oculomotor = p.oculomotor.clone();
         self.neck = p.neck.clone();
+        self.body = p.body.clone();
     }
 }
 

@@ -104,6 +104,7 @@ impl LoadedScene {
             attention: vh.attention.clone(),
             oculomotor: vh.oculomotor.clone(),
             neck: vh.neck.clone(),
+            body: vh.body.clone(),
         };
         let mut model = Model {
             props: self.scene.bodies.clone(),

@@ -253,8 +253,56 @@ pub enum Expect {
         #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
         to: f64,
     },
+    /// At least `at_least` evasions of `kind` (any evasion if `None`:
+    /// `Slip`, `Duck`, `LeanBack`) start in [from, to] and work: during the
+    /// evasion the head gets at least `offset` m from where it was when it
+    /// began (off the punch's line) and no opponent glove touches the
+    /// head.
+    Evades {
+        /// `Slip`, `Duck` or `LeanBack`; `None` for any.
+        #[serde(default)]
+        kind: Option<ActionKind>,
+        /// Window start, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        to: f64,
+        /// Least number of working evasions.
+        at_least: u32,
+        /// Most evasions started (working or not), if given.
+        #[serde(default)]
+        at_most: Option<u32>,
+        /// How far the head must get off its line, m (default 0.08).
+        #[serde(
+            default = "default_offset",
+            deserialize_with = "shisen_gaze::util::check::non_negative"
+        )]
+        offset: f64,
+    },
+    /// The fighting range (horizontal distance from the VH's pelvis, under
+    /// its waist joint, to the opponent's head) stays within
+    /// [at_least, at_most] m throughout [from, to].
+    Range {
+        /// Least range, m.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        at_least: f64,
+        /// Most range, m.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        at_most: f64,
+        /// Window start, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        to: f64,
+    },
     /// Every state value stays finite for the whole run.
     Finite,
+}
+
+fn default_offset() -> f64 {
+    0.08
 }
 
 /// The verdict on one expectation.
@@ -285,6 +333,9 @@ struct Acc {
     shut: bool,
     /// HeadRotation: the head's world direction at the window's start.
     origin: Option<glam::DVec2>,
+    /// Evades: the head's position when the evasion under way began,
+    /// whether it got far enough, whether it was touched.
+    evasion: Option<(glam::DVec3, bool, bool)>,
 }
 
 impl Expect {
@@ -304,6 +355,8 @@ impl Expect {
             | Expect::HeadSpeed { from, to, .. }
             | Expect::BlowMomentum { from, to, .. }
             | Expect::LineOfSightReaches { from, to, .. }
+            | Expect::Evades { from, to, .. }
+            | Expect::Range { from, to, .. }
             | Expect::ActionShare { from, to, .. } => Some((*from, *to)),
             Expect::AngleBelow { from, to, .. } => {
                 Some((from.unwrap_or(0.0), to.unwrap_or(duration)))
@@ -465,6 +518,40 @@ impl Checker {
                             a.max = a.max.max(j);
                             a.min = Some(a.min.map_or(j, |m: f64| m.min(j)));
                         }
+                    }
+                }
+                Expect::Evades {
+                    kind,
+                    from,
+                    to,
+                    offset,
+                    ..
+                } => {
+                    let evading = match kind {
+                        Some(k) => s.action == *k,
+                        None => s.action.defends() && s.action != ActionKind::Guard,
+                    };
+                    match (&mut a.evasion, evading) {
+                        (None, true) if inside(s.t, *from, *to) => {
+                            a.evasion = Some((s.head, false, s.head_hit));
+                            a.n += 1;
+                        }
+                        (Some((start, far, touched)), true) => {
+                            *far |= (s.head - *start).length() >= *offset;
+                            *touched |= s.head_hit;
+                        }
+                        (Some((_, far, touched)), false) => {
+                            a.hits += u64::from(*far && !*touched);
+                            a.evasion = None;
+                        }
+                        _ => {}
+                    }
+                }
+                Expect::Range { from, to, .. } => {
+                    if inside(s.t, *from, *to) {
+                        a.n += 1;
+                        a.max = a.max.max(s.range);
+                        a.min = Some(a.min.map_or(s.range, |m: f64| m.min(s.range)));
                     }
                 }
                 Expect::Finite => {
@@ -689,6 +776,42 @@ fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
             value: a.max,
             pass: a.n > 0 && a.max >= *min_deg,
         },
+        Expect::Evades {
+            kind,
+            from,
+            to,
+            at_least,
+            at_most,
+            offset,
+        } => {
+            // An evasion still under way at the end counts if it worked.
+            let open = a.evasion.map_or(0, |(_, far, touched)| u64::from(far && !touched));
+            let ok = a.hits + open;
+            Verdict {
+                what: format!(
+                    "at least {at_least} {} in [{from}, {to}] s take the head {offset} m off its line untouched{}",
+                    kind.map_or("evasions".to_string(), |k| format!("{k:?}")),
+                    at_most.map_or(String::new(), |m| format!(", at most {m} started"))
+                ),
+                measured: format!("{ok} of {} evasions", a.n),
+                value: ok as f64,
+                pass: ok >= u64::from(*at_least) && at_most.is_none_or(|m| a.n <= u64::from(m)),
+            }
+        }
+        Expect::Range {
+            at_least,
+            at_most,
+            from,
+            to,
+        } => {
+            let lo = a.min.unwrap_or(f64::NAN);
+            Verdict {
+                what: format!("the range stays in [{at_least}, {at_most}] m in [{from}, {to}] s"),
+                measured: format!("{lo:.3}-{:.3} m", a.max),
+                value: a.max,
+                pass: a.n > 0 && lo >= *at_least && a.max <= *at_most,
+            }
+        }
         Expect::Finite => Verdict {
             what: "state finite throughout (no NaN)".into(),
             measured: if a.bad {

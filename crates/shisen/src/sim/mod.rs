@@ -21,6 +21,7 @@ use rand::rngs::StdRng;
 
 use crate::physics::body::{OpponentPart, Seg, Shape, arm_ik};
 use crate::physics::control::JointTarget;
+use crate::physics::lower::{BodyCommand, LowerBody};
 use crate::physics::neck::{self, NeckState};
 use crate::physics::world::{PropSpec, World};
 use blows::{Blow, Blows, Tally};
@@ -111,6 +112,8 @@ pub struct Sim {
     blows: Blows,
     /// The neck muscles' activation (tone, bracing, reflex).
     pub neck: NeckState,
+    /// Legs, feet and waist.
+    pub lower: LowerBody,
     /// Bodies other than the VH's touching its head at the last step.
     head_touch: Vec<BodyId>,
     last: Option<Sample>,
@@ -160,6 +163,7 @@ impl Sim {
             targets[s.index()].rotation = q;
         }
         let mut rng = Streams::new(model.seed);
+        let lower = LowerBody::new(&model.params.body);
         Sim {
             face_state: FaceState::default(),
             oculomotor: Oculomotor::new(&model.params.oculomotor, &mut rng.oculomotor),
@@ -181,6 +185,7 @@ impl Sim {
             resets: 0,
             blows,
             neck: NeckState::default(),
+            lower,
             head_touch: Vec::new(),
             last: None,
         }
@@ -248,6 +253,7 @@ impl Sim {
             *t = JointTarget::default();
         }
         self.neck = NeckState::default();
+        self.lower = LowerBody::new(&self.model.params.body);
         self.resets += 1;
     }
 
@@ -452,15 +458,53 @@ impl Sim {
             })
     }
 
-    /// Arms: inverse kinematics of the planned glove positions; the
-    /// velocity reference comes from differencing the IK solution.
+    /// Body: the lower body steps and the waist turns toward the planned
+    /// posture (the lunge of a punch shifts the hips, so the feet step in
+    /// and out with it); the trunk is put where they carry it.
+    fn plan_body(&mut self, t: f64) -> (DVec3, glam::DQuat) {
+        let dt = self.model.dt;
+        let lunge = self.behaviour.torso_offset(t + dt);
+        let p = &self.model.params.body;
+        if !p.human {
+            self.world.set_root_offset(lunge.as_vec3());
+            return (lunge, glam::DQuat::IDENTITY);
+        }
+        let at = |k: f64| self.behaviour.posture(t + dt + k * dt);
+        let (before, now, after) = (at(-1.0), at(0.0), at(1.0));
+        let lunge_v = (self.behaviour.torso_offset(t + 2.0 * dt) - lunge) / dt;
+        let cmd = BodyCommand {
+            pelvis: now.pelvis + DVec3::new(lunge.x, 0.0, lunge.z),
+            pelvis_velocity: (after.pelvis - before.pelvis) / (2.0 * dt) + lunge_v,
+            waist: [
+                now.waist,
+                (after.waist - before.waist) / (2.0 * dt),
+                (after.waist - 2.0 * now.waist + before.waist) / (dt * dt),
+            ],
+            crouch: now.crouch,
+        };
+        self.lower.step(p, &cmd, t + dt, dt);
+        let offset = self.lower.waist_offset() + DVec3::Y * lunge.y;
+        let rotation = self.lower.trunk_rotation();
+        self.world
+            .set_root_pose(offset.as_vec3(), rotation.as_quat());
+        self.behaviour.set_trunk(offset, rotation);
+        (offset, rotation)
+    }
+
+    /// Arms: inverse kinematics of the planned glove positions, in the
+    /// trunk's frame; the velocity reference comes from differencing the
+    /// IK solution.
     fn plan_arms(&mut self, t: f64) {
         let dt = self.model.dt;
-        // The torso's lunge moves the shoulders: the arms' inverse
-        // kinematics works from where the torso will be.
-        let lunge = self.behaviour.torso_offset(t + dt);
-        self.world.set_root_offset(lunge.as_vec3());
-        let gloves = self.behaviour.glove_targets(t + dt).map(|g| g - lunge);
+        // The trunk's movement carries the shoulders: the arms' inverse
+        // kinematics works from where the trunk will be.
+        let (offset, rotation) = self.plan_body(t);
+        let waist = DVec3::from_array(shisen_gaze::anatomy::trunk::WAIST);
+        let inv = rotation.inverse();
+        let gloves = self
+            .behaviour
+            .glove_targets(t + dt)
+            .map(|g| waist + inv * (g - waist - offset));
         for (s, q) in arm_rotations(gloves) {
             let k = s.index();
             let prev = self.targets[k].rotation;
@@ -491,10 +535,7 @@ impl Sim {
         // postural muscles are set before a voluntary movement of one's own
         // (anticipatory postural adjustments), so its lunge into a punch
         // does not throw its head back.
-        let bracing = matches!(
-            self.behaviour.action(),
-            ActionKind::Guard | ActionKind::Attack
-        );
+        let bracing = self.behaviour.action() != ActionKind::Idle;
         self.neck
             .step(&p.neck, stretch, bracing, self.time(), self.model.dt);
         self.world
@@ -623,6 +664,13 @@ impl Sim {
             neck_actual: w.joint_angles(Seg::Head),
             head_world: DVec2::new(hy, hp),
             head_speed: f64::from(w.rb(Seg::Head).angvel().length()),
+            head: w.position(Seg::Head).as_dvec3(),
+            pelvis: self.lower.pelvis(),
+            waist: self.lower.waist(&self.model.params.body),
+            range: {
+                let d = w.position(w.part(OpponentPart::Head)).as_dvec3() - self.lower.pelvis();
+                d.x.hypot(d.z)
+            },
             top_saliency: top,
             finite: w.is_finite(),
             punching: self.behaviour.punching(),

@@ -16,6 +16,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::physics::body::BodyPlan;
 use crate::physics::control::Gains;
+use crate::physics::lower::BodyParams;
 use crate::physics::neck::NeckParams;
 use shisen_face::Face;
 use shisen_gaze::attention::AttentionParams;
@@ -47,6 +48,8 @@ pub struct Params {
     pub oculomotor: OculomotorParams,
     /// The neck under impact.
     pub neck: NeckParams,
+    /// The lower body: stance, stepping, the waist.
+    pub body: BodyParams,
 }
 
 /// Which defaults the VH's timing and perception follow (scene
@@ -62,7 +65,8 @@ pub enum Profile {
     /// (vision, saccades, pursuit, VOR, guard), pursuit gain 1, no onset
     /// capture, blinks only in the neutral face at the thesis's rate, and
     /// the thesis's face: its linear lid, Waters' fields unspread, no
-    /// wrinkles, lips that part with the jaw.
+    /// wrinkles, lips that part with the jaw; a trunk on a stand that
+    /// neither steps nor bends, and meets every punch with its guard.
     Seed,
 }
 
@@ -77,6 +81,10 @@ impl Params {
             self.behaviour.guard_reaction = 0.0;
             self.attention.onset_gain = 0.0;
             self.neck.human = false;
+            self.body.human = false;
+            self.behaviour.footwork = false;
+            self.personality.evade = 0.0;
+            self.personality.counter = 0.0;
         }
     }
 }

@@ -43,6 +43,16 @@ pub struct Sample {
     pub head_world: DVec2,
     /// The head's angular speed in the world, rad/s.
     pub head_speed: f64,
+    /// The head's centre, world, m.
+    pub head: DVec3,
+    /// The ground point under the waist joint (the pelvis), world, m.
+    pub pelvis: DVec3,
+    /// The waist's turn and bend, the trunk relative to the pelvis, rad
+    /// (pitch positive back, roll positive toward the VH's right).
+    pub waist: JointAngles,
+    /// The fighting range: horizontal distance from the pelvis to the
+    /// opponent's head, m.
+    pub range: f64,
     /// Top saliency scores (body name, score), highest first.
     pub top_saliency: Vec<(String, f64)>,
     /// True if every body state is finite.

@@ -1,8 +1,12 @@
-//! The action plan (boxing.md): guard, attack, idle. It decides what the VH
-//! wants to look at (the top-down request, gaze.md 5) and where its gloves
-//! go (minimum-jerk reaches, tracked through the arm joints by the body plan's inverse kinematics).
+//! The action plan (boxing.md): guard, evade, attack, idle. It decides
+//! what the VH wants to look at (the top-down request, gaze.md 5), where its
+//! gloves go (minimum-jerk reaches, tracked through the arm joints by the
+//! body plan's inverse kinematics) and, in [`body`], how its body moves:
+//! evasions, footwork, the trunk's turn in a punch.
 
-use glam::DVec3;
+mod body;
+
+use glam::{DQuat, DVec3};
 use rand::{Rng, RngExt};
 use rand_distr::{Distribution, Normal};
 use serde::{Deserialize, Serialize};
@@ -11,6 +15,8 @@ use crate::personality::Personality;
 use crate::target::{BodyId, Spot, TargetId};
 use crate::util::math::min_jerk;
 use crate::vision::Seen;
+use body::BodyPlan;
+pub use body::{Evasion, Posture, choose_evasion};
 
 /// The eyes are "on" a target when both lines of sight are within this
 /// angle of it (rad): the planner's cue that the attack target has been
@@ -26,6 +32,29 @@ pub enum ActionKind {
     Guard,
     /// Looking at the target, then punching.
     Attack,
+    /// Slipping a punch (head off its line sideways).
+    Slip,
+    /// Ducking a punch from the side.
+    Duck,
+    /// Leaning back out of a punch's reach.
+    LeanBack,
+}
+
+impl ActionKind {
+    /// Whether the action meets a seen punch (a guard or an evasion).
+    pub fn defends(self) -> bool {
+        !matches!(self, ActionKind::Idle | ActionKind::Attack)
+    }
+}
+
+impl From<Evasion> for ActionKind {
+    fn from(e: Evasion) -> Self {
+        match e {
+            Evasion::Slip => ActionKind::Slip,
+            Evasion::Duck => ActionKind::Duck,
+            Evasion::LeanBack => ActionKind::LeanBack,
+        }
+    }
 }
 
 /// Planner parameters (scene `vh.behaviour`).
@@ -82,6 +111,81 @@ pub struct BehaviourParams {
         deserialize_with = "crate::util::check::non_negative"
     )]
     pub max_lunge: f64,
+    /// Time from seeing a punch to the waist starting an evasion, s.
+    /// Default 0.13, the guard's: the same decision on the same sight.
+    #[serde(default = "default_reaction", deserialize_with = "reaction")]
+    pub evade_reaction: f64,
+    /// Time to carry an evasion out (the minimum-jerk path of the waist and
+    /// knees), s. Default 0.2.
+    #[serde(default = "default_evade_time", deserialize_with = "move_time")]
+    pub evade_time: f64,
+    /// An opponent glove closing on the head faster than this, its path
+    /// passing within 15 cm of the head, is a punch starting, m/s: the
+    /// moment an evasion is decided. Default 1.0: skilled fighters read a
+    /// punch from its first movement (Rosalie & Mueller 2013, Q. J. Exp.
+    /// Psychol. 66:1951; Petri, Droste & Witte 2020, J. Martial Arts Res.
+    /// 3(3): punches are mostly recognised in their first stages).
+    #[serde(default = "default_evade_speed", deserialize_with = "speed")]
+    pub evade_speed: f64,
+    /// How long an evasion is held once carried out, before recovering, s.
+    /// Default 0.25: the punch has gone by.
+    #[serde(default = "default_evade_hold", deserialize_with = "move_time")]
+    pub evade_hold: f64,
+    /// Whether the VH steps to hold its fighting range (footwork).
+    #[serde(default = "yes")]
+    pub footwork: bool,
+    /// Fighting range held by the footwork: horizontal distance from the
+    /// waist joint to the opponent's head, m. Default 0.92, the distance
+    /// the scenes start at (a jab's reach with a short step in).
+    #[serde(default = "default_range", deserialize_with = "range")]
+    pub range: f64,
+    /// The range may drift this far before the VH steps, m. Default 0.1.
+    #[serde(default = "default_tolerance", deserialize_with = "tolerance")]
+    pub range_tolerance: f64,
+    /// Longest footwork step of the pelvis, m. Default 0.3.
+    #[serde(default = "default_max_step", deserialize_with = "step_len")]
+    pub max_step: f64,
+    /// Duration of one footwork step of the pelvis, s. Default 0.4.
+    #[serde(default = "default_step_time", deserialize_with = "move_time")]
+    pub step_time: f64,
+}
+
+crate::ranged_fields! {
+    reaction: 0.0, 1.0;
+    move_time: 0.05, 2.0;
+    range: 0.3, 3.0;
+    tolerance: 0.0, 1.0;
+    step_len: 0.0, 1.0;
+    speed: 0.1, 20.0;
+}
+
+fn default_evade_speed() -> f64 {
+    0.6
+}
+fn default_evade_hold() -> f64 {
+    0.25
+}
+
+fn yes() -> bool {
+    true
+}
+fn default_reaction() -> f64 {
+    0.13
+}
+fn default_evade_time() -> f64 {
+    0.15
+}
+fn default_range() -> f64 {
+    0.92
+}
+fn default_tolerance() -> f64 {
+    0.1
+}
+fn default_max_step() -> f64 {
+    0.3
+}
+fn default_step_time() -> f64 {
+    0.4
 }
 
 fn default_max_lunge() -> f64 {
@@ -105,6 +209,15 @@ impl Default for BehaviourParams {
             guard_hold: 0.25,
             attacks: true,
             max_lunge: default_max_lunge(),
+            evade_reaction: default_reaction(),
+            evade_time: default_evade_time(),
+            evade_speed: default_evade_speed(),
+            evade_hold: default_evade_hold(),
+            footwork: true,
+            range: default_range(),
+            range_tolerance: default_tolerance(),
+            max_step: default_max_step(),
+            step_time: default_step_time(),
         }
     }
 }
@@ -196,6 +309,11 @@ enum Plan {
         point: DVec3,
         until: f64,
     },
+    Evade {
+        threat: BodyId,
+        kind: Evasion,
+        until: f64,
+    },
     Attack {
         hand: usize,
         target: TopDown,
@@ -217,8 +335,14 @@ pub struct Behaviour {
     lunge: Option<Reach>,
     /// Guard-stance glove positions (world), left and right.
     stance: [DVec3; 2],
+    /// The body's plan: evasions, footwork, the trunk's turn.
+    body: BodyPlan,
     /// Punches the VH has thrown.
     pub punches_thrown: u32,
+    /// Evasions the VH has started.
+    pub evasions: u32,
+    /// The glove whose punch was last weighed for an evasion.
+    considered: Option<BodyId>,
 }
 
 impl Default for Behaviour {
@@ -235,7 +359,10 @@ impl Behaviour {
             reaches: [None, None],
             lunge: None,
             stance: [DVec3::new(0.11, 1.56, 0.27), DVec3::new(-0.11, 1.56, 0.27)],
+            body: BodyPlan::default(),
             punches_thrown: 0,
+            evasions: 0,
+            considered: None,
         }
     }
 
@@ -244,6 +371,7 @@ impl Behaviour {
         match self.plan {
             Plan::Idle => ActionKind::Idle,
             Plan::Guard { .. } => ActionKind::Guard,
+            Plan::Evade { kind, .. } => kind.into(),
             Plan::Attack { .. } => ActionKind::Attack,
         }
     }
@@ -253,7 +381,9 @@ impl Behaviour {
     pub fn target_name<'a>(&'a self, names: &'a [String]) -> Option<&'a str> {
         match &self.plan {
             Plan::Idle => None,
-            Plan::Guard { threat, .. } => Some(&names[threat.index()]),
+            Plan::Guard { threat, .. } | Plan::Evade { threat, .. } => {
+                Some(&names[threat.index()])
+            }
             Plan::Attack { target, .. } => Some(&target.name),
         }
     }
@@ -266,7 +396,7 @@ impl Behaviour {
     fn glove(&self, hand: usize, t: f64) -> DVec3 {
         self.reaches[hand]
             .as_ref()
-            .map_or(self.stance[hand], |r| r.at(t))
+            .map_or_else(|| self.body.on_trunk(self.stance[hand]), |r| r.at(t))
     }
 
     /// Advance one tick: choose the action, return the top-down request.
@@ -295,32 +425,88 @@ impl Behaviour {
             offset: DVec3::ZERO,
             amount: pers.a_face,
         };
-        // Guard pre-empts everything (a threat seen now).
+        let opponent_head = view.seen.iter().find(|s| s.body == view.parts[0]);
+        if !matches!(self.plan, Plan::Attack { thrown: true, .. }) {
+            self.body.keep_range(p, opponent_head, t);
+        }
+        // A punch seen starting at the head may be evaded: decided once per
+        // punch, on its first sight, by the personality's share.
+        let onset = glove_onset(p, view);
+        if let Some(g) = onset.filter(|g| self.considered != Some(g.body)) {
+            self.considered = Some(g.body);
+            let evading = matches!(self.plan, Plan::Evade { .. });
+            let head = view.vh_points[0];
+            let opp = opponent_head.map(|h| h.position);
+            if let Some((kind, right)) = choose_evasion(pers, g, head, opp, rng).filter(|_| !evading) {
+                self.body.evade(kind, right, t, p);
+                self.evasions += 1;
+                self.plan = Plan::Evade {
+                    threat: g.body,
+                    kind,
+                    until: t + p.evade_reaction + p.evade_time + p.evade_hold,
+                };
+            }
+        }
+        if onset.is_none() {
+            self.considered = None;
+        }
+        // A threat seen now pre-empts everything but an evasion of it.
         if let Some((threat, point, ttc)) = aimed_glove(p, view) {
             // The VH's glove on the side the punch comes from (the opponent's
             // left glove arrives on the VH's right).
             let hand = if threat == view.parts[1] { 1 } else { 0 };
-            let start_new = !matches!(self.plan, Plan::Guard { threat: th, .. } if th == threat);
-            if start_new {
-                let from = self.glove(hand, t);
-                // The glove moves once the reaction time is over (the reach
-                // holds its start point until t0).
-                self.reaches[hand] = Some(Reach {
-                    from,
-                    to: point,
-                    t0: t + p.guard_reaction,
-                    dur: (0.3 * ttc).max(0.05),
-                    back: false,
-                });
-            }
-            self.plan = Plan::Guard {
-                threat,
-                hand,
-                point,
-                until: t + p.guard_hold,
+            let met = match self.plan {
+                Plan::Guard { threat: th, .. } | Plan::Evade { threat: th, .. } => th == threat,
+                _ => false,
             };
+            if !met || matches!(self.plan, Plan::Guard { .. }) {
+                if !met {
+                    let from = self.glove(hand, t);
+                    // The glove moves once the reaction time is over (the
+                    // reach holds its start point until t0).
+                    self.reaches[hand] = Some(Reach {
+                        from,
+                        to: point,
+                        t0: t + p.guard_reaction,
+                        dur: (0.3 * ttc).max(0.05),
+                        back: false,
+                    });
+                    if let Plan::Evade { .. } = self.plan {
+                        self.body.recover(t + p.guard_reaction);
+                    }
+                }
+                self.plan = Plan::Guard {
+                    threat,
+                    hand,
+                    point,
+                    until: t + p.guard_hold,
+                };
+            }
         }
         match self.plan.clone() {
+            Plan::Evade { threat, kind, until } => {
+                if t >= until {
+                    self.body.recover(t);
+                    self.plan = Plan::Idle;
+                    // A strong boxer counters out of a slip, with the hand
+                    // on the side it slipped to.
+                    if p.attacks && kind == Evasion::Slip && rng.random::<f64>() < pers.counter {
+                        let right = self.body.posture(t).waist.z > 0.0;
+                        return self.start_attack(usize::from(right), false, p, pers, view, t, rng);
+                    }
+                } else {
+                    return strongest(
+                        TopDown {
+                            name: view.names[threat.index()].clone(),
+                            body: Some(threat),
+                            spot: Spot::Centre,
+                            offset: DVec3::ZERO,
+                            amount: pers.a_guard,
+                        },
+                        face,
+                    );
+                }
+            }
             Plan::Guard {
                 threat,
                 hand,
@@ -376,6 +562,7 @@ impl Behaviour {
                     match self.punch_reach(hand, &target, view, t, p) {
                         Some(r) => {
                             self.lunge = Self::lunge_for(hand, r.to, t, p);
+                            self.body.punch(hand, t, p.punch_time);
                             self.reaches[hand] = Some(r);
                             self.punches_thrown += 1;
                             self.plan = Plan::Attack {
@@ -406,35 +593,57 @@ impl Behaviour {
         {
             let hand = rng.random_range(0..2usize);
             let to_body = rng.random::<f64>() < p.body_shot_share;
-            let n = Normal::new(0.0, p.target_spread.max(1e-12)).expect("valid sd");
-            let offset = DVec3::new(n.sample(rng), n.sample(rng), 0.0);
-            let target = if to_body {
-                TopDown {
-                    name: "opponent_body".into(),
-                    body: Some(view.parts[0]),
-                    spot: Spot::Trunk,
-                    offset: DVec3::new(0.0, -0.35, 0.05) + offset,
-                    amount: pers.a_attack,
-                }
-            } else {
-                TopDown {
-                    name: "head".into(),
-                    body: Some(view.parts[0]),
-                    spot: Spot::Centre,
-                    offset,
-                    amount: pers.a_attack,
-                }
-            };
-            self.plan = Plan::Attack {
-                hand,
-                target: target.clone(),
-                decided: t,
-                looked: None,
-                thrown: false,
-            };
-            return strongest(target, face);
+            return self.start_attack(hand, to_body, p, pers, view, t, rng);
         }
         face
+    }
+
+    /// Decide to punch with `hand` at the opponent's head or body (with the
+    /// aim's random spread); the eyes go to the target first.
+    fn start_attack(
+        &mut self,
+        hand: usize,
+        to_body: bool,
+        p: &BehaviourParams,
+        pers: &Personality,
+        view: &OpponentView,
+        t: f64,
+        rng: &mut impl Rng,
+    ) -> TopDown {
+        let n = Normal::new(0.0, p.target_spread.max(1e-12)).expect("valid sd");
+        let offset = DVec3::new(n.sample(rng), n.sample(rng), 0.0);
+        let target = if to_body {
+            TopDown {
+                name: "opponent_body".into(),
+                body: Some(view.parts[0]),
+                spot: Spot::Trunk,
+                offset: DVec3::new(0.0, -0.35, 0.05) + offset,
+                amount: pers.a_attack,
+            }
+        } else {
+            TopDown {
+                name: "head".into(),
+                body: Some(view.parts[0]),
+                spot: Spot::Centre,
+                offset,
+                amount: pers.a_attack,
+            }
+        };
+        self.plan = Plan::Attack {
+            hand,
+            target: target.clone(),
+            decided: t,
+            looked: None,
+            thrown: false,
+        };
+        let face = TopDown {
+            name: "head".into(),
+            body: Some(view.parts[0]),
+            spot: Spot::Centre,
+            offset: DVec3::ZERO,
+            amount: pers.a_face,
+        };
+        strongest(target, face)
     }
 
     fn punch_reach(
@@ -477,6 +686,23 @@ impl Behaviour {
         })
     }
 
+    /// The body's planned posture at `t`: footwork, evasions, the trunk's
+    /// turn in a punch (the lunge is [`Behaviour::torso_offset`]).
+    pub fn posture(&self, t: f64) -> Posture {
+        self.body.posture(t)
+    }
+
+    /// Tell the planner where the trunk is (the waist joint's offset from
+    /// rest, the trunk's rotation): the guard's stance rides on it.
+    pub fn set_trunk(&mut self, offset: DVec3, rotation: DQuat) {
+        self.body.trunk = (offset, rotation);
+    }
+
+    /// Footwork steps started.
+    pub fn footwork_steps(&self) -> u32 {
+        self.body.steps
+    }
+
     /// Where the torso is stepped to now (offset from its rest position).
     pub fn torso_offset(&self, t: f64) -> DVec3 {
         self.lunge.as_ref().map_or(DVec3::ZERO, |r| r.at(t))
@@ -486,6 +712,26 @@ impl Behaviour {
     pub fn glove_targets(&self, t: f64) -> [DVec3; 2] {
         [self.glove(0, t), self.glove(1, t)]
     }
+}
+
+/// A punch at the head seen starting: the opponent glove closing fastest
+/// on the VH's head, faster than `evade_speed`, on a path that passes
+/// within 15 cm of it.
+pub fn glove_onset<'a>(p: &BehaviourParams, view: &OpponentView<'a>) -> Option<&'a Seen> {
+    let head = view.vh_points[0];
+    view.seen
+        .iter()
+        .filter(|s| s.body == view.parts[1] || s.body == view.parts[2])
+        .filter_map(|s| {
+            let to = head - s.position;
+            let dir = to.normalize_or_zero();
+            let closing = s.velocity.dot(dir);
+            let heading = s.velocity.normalize_or_zero();
+            let miss = (to - to.dot(heading) * heading).length();
+            (closing > p.evade_speed && miss < 0.15).then_some((s, closing))
+        })
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(s, _)| s)
 }
 
 /// The aimed-glove test (boxing.md, Guard): the fastest opponent glove that

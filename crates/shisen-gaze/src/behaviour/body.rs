@@ -1,0 +1,213 @@
+//! The body's share of the plan (boxing.md; docs/model/body.md): which
+//! evasion meets a seen punch, the waist's turn and bend and the knees'
+//! dip that carry it out, the footwork that holds the fighting range, and
+//! the trunk's turn in the VH's own punches. The plan is kinematic
+//! (minimum-jerk paths); the physical waist follows it through its PD law.
+
+use glam::{DQuat, DVec3};
+use rand::{Rng, RngExt};
+use serde::{Deserialize, Serialize};
+
+use super::{BehaviourParams, Reach};
+use crate::anatomy::trunk;
+use crate::personality::Personality;
+use crate::vision::Seen;
+
+/// A way out of a punch's path, chosen from what vision reports.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+pub enum Evasion {
+    /// The head off the punch line sideways: a lateral bend and turn at
+    /// the waist, knees slightly bent, to the side the punching glove is
+    /// on (outside the arm, where a counter is open).
+    Slip,
+    /// Under a punch that comes from the side (a hook): knees bend, the
+    /// trunk bends forward.
+    Duck,
+    /// The head back out of reach: the trunk leans back at the waist.
+    LeanBack,
+}
+
+/// The waist's turn and bend (yaw, pitch, roll from neutral, rad; pitch
+/// positive back) and the knees' dip (m) that carry out an evasion.
+/// Slip: 12 deg of lateral bend and 9 deg of turn take the head about
+/// 15 cm sideways; duck: 13 cm of knee bend and 11 deg forward; lean back
+/// 13 deg. Magnitudes are ours, sized so each takes the head at least a
+/// head's width (15 cm) off its line.
+fn evasion_posture(e: Evasion, right: bool) -> (DVec3, f64) {
+    let s = if right { 1.0 } else { -1.0 };
+    match e {
+        Evasion::Slip => (DVec3::new(-0.15 * s, 0.0, 0.26 * s), 0.05),
+        Evasion::Duck => (DVec3::new(0.0, -0.2, 0.0), 0.13),
+        Evasion::LeanBack => (DVec3::new(0.0, 0.23, 0.0), 0.0),
+    }
+}
+
+/// The planned posture at a time.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Posture {
+    /// Ground point under the waist joint, world, m.
+    pub pelvis: DVec3,
+    /// Waist turn and bend from neutral (yaw, pitch, roll), rad.
+    pub waist: DVec3,
+    /// Knee dip, m.
+    pub crouch: f64,
+}
+
+/// The body's plan: minimum-jerk paths for the pelvis, the waist and the
+/// knees (each holds its end until replaced), and where the trunk is.
+#[derive(Clone, Debug, Default)]
+pub(super) struct BodyPlan {
+    step: Option<Reach>,
+    bend: Option<Reach>,
+    dip: Option<Reach>,
+    /// The trunk as it is: the waist joint's offset from rest and the
+    /// trunk's rotation (the guard's stance rides on it).
+    pub trunk: (DVec3, DQuat),
+    /// Footwork moves started.
+    pub steps: u32,
+}
+
+fn at(r: &Option<Reach>, t: f64) -> DVec3 {
+    r.as_ref().map_or(DVec3::ZERO, |r| r.at(t))
+}
+
+impl BodyPlan {
+    /// The planned posture at `t`.
+    pub fn posture(&self, t: f64) -> Posture {
+        Posture {
+            pelvis: at(&self.step, t),
+            waist: at(&self.bend, t),
+            crouch: at(&self.dip, t).y,
+        }
+    }
+
+    /// A point given in the trunk's rest frame, where the trunk is now.
+    pub fn on_trunk(&self, rest: DVec3) -> DVec3 {
+        let waist = DVec3::from_array(trunk::WAIST);
+        self.trunk.0 + waist + self.trunk.1 * (rest - waist)
+    }
+
+    fn bend_to(&mut self, to: DVec3, t0: f64, dur: f64) {
+        let from = at(&self.bend, t0);
+        self.bend = Some(Reach {
+            from,
+            to,
+            t0,
+            dur,
+            back: false,
+        });
+    }
+
+    fn dip_to(&mut self, crouch: f64, t0: f64, dur: f64) {
+        let from = at(&self.dip, t0);
+        self.dip = Some(Reach {
+            from,
+            to: DVec3::new(0.0, crouch, 0.0),
+            t0,
+            dur,
+            back: false,
+        });
+    }
+
+    /// Start an evasion: the waist and knees move once the reaction time
+    /// is over; `right` is the side (the VH's) a slip goes to.
+    pub fn evade(&mut self, e: Evasion, right: bool, t: f64, p: &BehaviourParams) {
+        let (waist, crouch) = evasion_posture(e, right);
+        let t0 = t + p.evade_reaction;
+        self.bend_to(waist, t0, p.evade_time);
+        self.dip_to(crouch, t0, p.evade_time);
+    }
+
+    /// Back to the neutral posture.
+    pub fn recover(&mut self, t: f64) {
+        self.bend_to(DVec3::ZERO, t, 0.35);
+        self.dip_to(0.0, t, 0.35);
+    }
+
+    /// The trunk's turn in a punch of `hand` (0 left, the lead hand of an
+    /// orthodox stance) lasting `dur`, out and back: the cross turns the
+    /// rear shoulder through, the jab the lead shoulder a little.
+    pub fn punch(&mut self, hand: usize, t: f64, dur: f64) {
+        let yaw = if hand == 1 { 0.35 } else { -0.12 };
+        self.bend = Some(Reach {
+            from: DVec3::ZERO,
+            to: DVec3::new(yaw, -0.05, 0.0),
+            t0: t,
+            dur,
+            back: true,
+        });
+    }
+
+    /// Footwork: step to hold the fighting range to the opponent's seen
+    /// head (horizontal distance from the waist joint), when it will be off
+    /// by more than the tolerance by the time a step is taken (the
+    /// opponent's approach extrapolated) and no step is under way.
+    pub fn keep_range(&mut self, p: &BehaviourParams, head: Option<&Seen>, t: f64) {
+        if !p.footwork || self.step.as_ref().is_some_and(|s| !s.done(t)) {
+            return;
+        }
+        let Some(head) = head else { return };
+        let pelvis = at(&self.step, t);
+        let waist = DVec3::from_array(trunk::WAIST);
+        let to = head.position - (pelvis + DVec3::new(waist.x, 0.0, waist.z));
+        let to = DVec3::new(to.x, 0.0, to.z);
+        let range = to.length();
+        if range < 1e-6 {
+            return;
+        }
+        // Where the range will be once a step decided now has been taken,
+        // at the opponent's present closing speed.
+        let opening = head.velocity.dot(to / range);
+        let off = range - p.range + opening * (p.guard_reaction + p.step_time);
+        if off.abs() <= p.range_tolerance {
+            return;
+        }
+        let by = off.clamp(-p.max_step, p.max_step);
+        self.step = Some(Reach {
+            from: pelvis,
+            to: pelvis + to / range * by,
+            t0: t + p.guard_reaction,
+            dur: p.step_time,
+            back: false,
+        });
+        self.steps += 1;
+    }
+}
+
+/// Which evasion meets a punch seen as `glove` heading for `head`, if
+/// the VH evades it at all (the personality's `evade` share; the rest are
+/// blocked). A glove that comes from the side (more than 25 cm off the
+/// line between the fighters' heads) is a hook, ducked; a straight punch
+/// is slipped, or leant away from one time in four. Returns the evasion
+/// and whether it goes to the VH's right.
+pub fn choose_evasion(
+    pers: &Personality,
+    glove: &Seen,
+    head: DVec3,
+    opponent_head: Option<DVec3>,
+    rng: &mut impl Rng,
+) -> Option<(Evasion, bool)> {
+    // Only punches at the head can be evaded by moving the head.
+    let heading = glove.velocity.normalize_or_zero();
+    let to = head - glove.position;
+    let miss = (to - to.dot(heading) * heading).length();
+    if miss > 0.15 || rng.random::<f64>() >= pers.evade {
+        return None;
+    }
+    // The glove's side, seen from the VH: -X is its right.
+    let right = glove.position.x < head.x;
+    let from_side = opponent_head.is_some_and(|o| {
+        let line = DVec3::new(o.x - head.x, 0.0, o.z - head.z).normalize_or_zero();
+        let g = glove.position - head;
+        let g = DVec3::new(g.x, 0.0, g.z);
+        (g - line * g.dot(line)).length() > 0.25
+    });
+    let e = if from_side {
+        Evasion::Duck
+    } else if rng.random::<f64>() < 0.75 {
+        Evasion::Slip
+    } else {
+        Evasion::LeanBack
+    };
+    Some((e, right))
+}

@@ -1,0 +1,494 @@
+//! The lower body and the waist: how the VH stands, steps and bends
+//! (docs/model/body.md, W1-W3).
+//!
+//! **How the pelvis is carried: driven, not balanced.** The hips are
+//! moved kinematically along the footwork's minimum-jerk paths (the
+//! behaviour's range keeping, a punch's weight shift, a duck's knee bend);
+//! the legs are placed under them by inverse kinematics with feet that stay
+//! planted until they step (W2); from the hips up the body is physical: the
+//! trunk turns and bends at the waist under a PD law acting on the upper
+//! body's inertia with bounded torque (W1), and carries the physical head
+//! and arms. A fully balanced biped would add ten contact-driven joints and
+//! a balance controller to a model whose subject is gaze, for motion a
+//! boxer's feet mostly keep out of sight; the driven pelvis keeps the
+//! physics step near MuJoCo's cost and the 10-hour soak free of falls. What
+//! it gives up: a blow cannot knock the VH off its feet, and the arms'
+//! reaction torques do not turn the trunk.
+//!
+//! ```text
+//! I q'' = clamp(I q''* + Kp (q* - q) + Kd (q'* - q'), +-tau_max)     (W1)
+//!   Kp = I (2 pi f)^2,  Kd = 2 zeta I (2 pi f)   per axis (yaw, pitch, roll)
+//! foot k steps when |place_k(pelvis) - foot_k| > trigger, the other
+//!   foot planted; it lands at place_k(pelvis at the step's end)          (W2)
+//! leg: two links hip-knee-ankle, knee in the foot's plane; an ankle out
+//!   of reach lifts the heel about the toes (as a rear heel in a jab)    (W3)
+//! ```
+
+use glam::{DQuat, DVec3};
+use serde::{Deserialize, Serialize};
+use shisen_gaze::util::math::{JointAngles, min_jerk};
+
+/// Lower-body anthropometry: Winter (2009, "Biomechanics and Motor
+/// Control of Human Movement", 4th ed., fig. 4.1) segment lengths as
+/// fractions of stature, for a 1.85 m man (the VH's head top is at 1.80 m
+/// in a boxer's slight crouch), and de Leva (1996, J. Biomech.
+/// 29:1223) male segment masses as fractions of a 75 kg body.
+pub mod anthro {
+    /// Stature, m.
+    pub const STATURE: f64 = 1.85;
+    /// Hip joint centre to knee, m (0.245 H).
+    pub const THIGH: f64 = 0.245 * STATURE;
+    /// Knee to ankle, m (0.246 H).
+    pub const SHANK: f64 = 0.246 * STATURE;
+    /// Ankle above the sole, m (0.039 H).
+    pub const ANKLE_HEIGHT: f64 = 0.039 * STATURE;
+    /// Foot length, m (0.152 H).
+    pub const FOOT_LENGTH: f64 = 0.152 * STATURE;
+    /// Ankle ahead of the heel, as a share of the foot's length.
+    pub const ANKLE_FROM_HEEL: f64 = 0.25;
+    /// Half the distance between the hip joint centres, m (0.191 H hip
+    /// width, joint centres about half of it apart).
+    pub const HIP_HALF: f64 = 0.0875;
+    /// Hip joint centres below the waist joint (the trunk's pivot), m.
+    pub const HIP_BELOW_WAIST: f64 = 0.09;
+    /// Body mass, kg.
+    pub const MASS: f64 = 75.0;
+    /// Mass above the waist (head 6.94 %, trunk less pelvis 32.29 %, arms
+    /// 2 x 4.94 %; de Leva 1996), kg.
+    pub const UPPER_MASS: f64 = (0.0694 + 0.3229 + 2.0 * 0.0494) * MASS;
+    /// Its centre of mass above the waist joint, m (de Leva's trunk
+    /// centres, with the head and arms).
+    pub const UPPER_COM: f64 = 0.30;
+    /// Moments of inertia of the upper body about the waist joint, kg m^2:
+    /// yaw (the trunk's axial radius of gyration, 0.16 m, and the arms at
+    /// the shoulders), pitch and roll (parallel axes to the centre of mass
+    /// plus the segments' own, radius of gyration about 0.13 m).
+    pub const WAIST_INERTIA: [f64; 3] = [
+        UPPER_MASS * 0.16 * 0.16,
+        UPPER_MASS * (UPPER_COM * UPPER_COM + 0.13 * 0.13),
+        UPPER_MASS * (UPPER_COM * UPPER_COM + 0.12 * 0.12),
+    ];
+}
+
+/// The lower body's parameters (scene `vh.body`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct BodyParams {
+    /// Whether the VH stands and steps (legs, footwork, the waist): the
+    /// default. `false` is the seed's VH, a trunk on a stand that neither
+    /// bends nor steps (`profile: Seed`).
+    pub human: bool,
+    /// Natural frequency of the waist's PD law (W1), Hz. Default 2.5: a
+    /// boxer's slip or duck takes the head 10-20 cm in about 0.2 s.
+    #[serde(deserialize_with = "frequency")]
+    pub waist_frequency: f64,
+    /// Damping ratio of the waist's law. Default 1 (no overshoot).
+    #[serde(deserialize_with = "damping_ratio")]
+    pub waist_damping: f64,
+    /// Strongest torque the trunk's muscles give about yaw, pitch and
+    /// roll, N m. Default 90, 220, 150: maximal isometric trunk moments of
+    /// healthy men (axial rotation about 60-110 N m, extension 200-300,
+    /// lateral bend 120-180; e.g. Kumar, Dufresne & Garand 1991,
+    /// Ergonomics 34:1063; McGill 1992, J. Biomech. 25:395).
+    #[serde(deserialize_with = "torques")]
+    pub waist_max_torque: [f64; 3],
+    /// The hips' turn in the stance, deg (negative: the left hip, the lead
+    /// side of an orthodox boxer, forward). The waist turns the trunk back
+    /// square to the opponent. Default -15.
+    #[serde(deserialize_with = "hip_turn")]
+    pub hip_turn_deg: f64,
+    /// Lead (left) foot's place relative to the pelvis at rest, `[x, z]`,
+    /// m; the rear foot's mirrors it. Default `[0.13, 0.22]`: feet about
+    /// shoulder width apart and a foot's length and a half between heels
+    /// front to back, a boxer's stance.
+    #[serde(deserialize_with = "foot_place")]
+    pub lead_foot: [f64; 2],
+    /// A planted foot steps when it is this far from its place under the
+    /// moving pelvis (W2), m. Default 0.08.
+    #[serde(deserialize_with = "trigger")]
+    pub step_trigger: f64,
+    /// One foot's swing, s. Default 0.25 (see `docs/model/body.md`).
+    #[serde(deserialize_with = "swing")]
+    pub step_time: f64,
+    /// The swinging foot's highest lift, m. Default 0.04: boxers glide,
+    /// their feet barely leave the canvas.
+    #[serde(deserialize_with = "lift")]
+    pub step_lift: f64,
+}
+
+shisen_gaze::ranged_fields! {
+    frequency: 0.2, 20.0;
+    damping_ratio: 0.1, 5.0;
+    hip_turn: -60.0, 60.0;
+    trigger: 0.01, 0.5;
+    swing: 0.05, 2.0;
+    lift: 0.0, 0.3;
+}
+
+fn torques<'de, D: serde::Deserializer<'de>>(d: D) -> Result<[f64; 3], D::Error> {
+    use serde::de::Error;
+    let v = <[f64; 3]>::deserialize(d)?;
+    if v.iter().any(|t| !(1.0..=2000.0).contains(t)) {
+        return Err(D::Error::custom(format!(
+            "each torque must lie in [1, 2000] N m, got {v:?}"
+        )));
+    }
+    Ok(v)
+}
+
+fn foot_place<'de, D: serde::Deserializer<'de>>(d: D) -> Result<[f64; 2], D::Error> {
+    use serde::de::Error;
+    let v = <[f64; 2]>::deserialize(d)?;
+    if !(0.05..=0.4).contains(&v[0]) || !(0.0..=0.5).contains(&v[1]) {
+        return Err(D::Error::custom(format!(
+            "x must lie in [0.05, 0.4] m and z in [0, 0.5] m, got {v:?}"
+        )));
+    }
+    Ok(v)
+}
+
+impl Default for BodyParams {
+    fn default() -> Self {
+        BodyParams {
+            human: true,
+            waist_frequency: 2.5,
+            waist_damping: 1.0,
+            waist_max_torque: [90.0, 220.0, 150.0],
+            hip_turn_deg: -15.0,
+            lead_foot: [0.13, 0.22],
+            step_trigger: 0.08,
+            step_time: 0.25,
+            step_lift: 0.04,
+        }
+    }
+}
+
+impl BodyParams {
+    /// The seed's VH: a trunk on a stand.
+    pub fn seed() -> Self {
+        BodyParams {
+            human: false,
+            ..BodyParams::default()
+        }
+    }
+}
+
+/// What the behaviour asks of the lower body this tick.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BodyCommand {
+    /// Where the pelvis goes (ground point under the waist joint, world).
+    pub pelvis: DVec3,
+    /// Its velocity along the planned path, m/s (for the feet's landing).
+    pub pelvis_velocity: DVec3,
+    /// The waist's commanded turn and bend from neutral (yaw, pitch,
+    /// roll), rad, and their rates and accelerations.
+    pub waist: [DVec3; 3],
+    /// How far the knees lower the hips, m.
+    pub crouch: f64,
+}
+
+/// One foot: planted where it is, or swinging.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Foot {
+    /// Heel-to-toe midpoint on the ground, world.
+    at: DVec3,
+    swing: Option<Swing>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Swing {
+    from: DVec3,
+    to: DVec3,
+    t0: f64,
+}
+
+/// A leg's joint centres, world, for drawing and traces.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Leg {
+    /// Hip joint centre.
+    pub hip: DVec3,
+    /// Knee.
+    pub knee: DVec3,
+    /// Ankle.
+    pub ankle: DVec3,
+    /// Ball of the foot (the toes' base).
+    pub toe: DVec3,
+    /// Heel, on the sole.
+    pub heel: DVec3,
+}
+
+/// The lower body's evolving state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LowerBody {
+    /// Ground point under the waist joint, world.
+    pelvis: DVec3,
+    crouch: f64,
+    feet: [Foot; 2],
+    /// Waist angles from neutral (yaw, pitch, roll), rad, and rates.
+    q: DVec3,
+    qd: DVec3,
+    /// Feet that started a step, counted.
+    pub steps: u32,
+}
+
+/// The waist joint at rest, world (the trunk's pivot).
+pub const WAIST_REST: DVec3 = DVec3::new(0.0, 1.0, 0.0);
+
+impl LowerBody {
+    /// Standing at rest in the stance, the pelvis under the waist's rest
+    /// position.
+    pub fn new(p: &BodyParams) -> Self {
+        let pelvis = DVec3::new(WAIST_REST.x, 0.0, WAIST_REST.z);
+        LowerBody {
+            pelvis,
+            crouch: 0.0,
+            feet: [0, 1].map(|k| Foot {
+                at: pelvis + place(p, k),
+                swing: None,
+            }),
+            q: DVec3::ZERO,
+            qd: DVec3::ZERO,
+            steps: 0,
+        }
+    }
+
+    /// Advance one tick toward `cmd`: the pelvis goes where it is sent,
+    /// the waist follows its law (W1), the feet step to stay under the
+    /// pelvis (W2).
+    pub fn step(&mut self, p: &BodyParams, cmd: &BodyCommand, t: f64, dt: f64) {
+        if !p.human {
+            return;
+        }
+        self.pelvis = DVec3::new(cmd.pelvis.x, 0.0, cmd.pelvis.z);
+        self.crouch = cmd.crouch;
+        let w = std::f64::consts::TAU * p.waist_frequency;
+        for i in 0..3 {
+            let inertia = anthro::WAIST_INERTIA[i];
+            let (kp, kd) = (inertia * w * w, 2.0 * p.waist_damping * inertia * w);
+            let [q, qd, qdd] = cmd.waist.map(|v| v[i]);
+            let tau = inertia * qdd + kp * (q - self.q[i]) + kd * (qd - self.qd[i]);
+            let tau = tau.clamp(-p.waist_max_torque[i], p.waist_max_torque[i]);
+            self.qd[i] += tau / inertia * dt;
+            self.q[i] += self.qd[i] * dt;
+        }
+        // W2: a swing ends; a planted foot far from its place steps, one
+        // foot at a time, landing where its place will be.
+        for f in &mut self.feet {
+            if f.swing.is_some_and(|s| t - s.t0 >= p.step_time) {
+                f.at = f.swing.take().map_or(f.at, |s| s.to);
+            }
+        }
+        if self.feet.iter().all(|f| f.swing.is_none()) {
+            let ahead = self.pelvis + cmd.pelvis_velocity * p.step_time;
+            let far = [0, 1]
+                .map(|k| (k, (self.pelvis + place(p, k) - self.feet[k].at).length()))
+                .into_iter()
+                .filter(|&(_, d)| d > p.step_trigger)
+                .max_by(|a, b| a.1.total_cmp(&b.1));
+            if let Some((k, _)) = far {
+                let to = ahead + place(p, k);
+                self.feet[k].swing = Some(Swing {
+                    from: self.feet[k].at,
+                    to,
+                    t0: t,
+                });
+                self.steps += 1;
+            }
+        }
+        for f in &mut self.feet {
+            if let Some(s) = f.swing {
+                let u = ((t - s.t0) / p.step_time).clamp(0.0, 1.0);
+                f.at = s.from + (s.to - s.from) * min_jerk(u);
+                f.at.y = p.step_lift * (std::f64::consts::PI * u).sin();
+            }
+        }
+    }
+
+    /// The waist's angles relative to the pelvis (yaw, pitch, roll), rad:
+    /// the trace's `waist_*` columns.
+    pub fn waist(&self, p: &BodyParams) -> JointAngles {
+        if !p.human {
+            return JointAngles::default();
+        }
+        JointAngles {
+            yaw: self.q.x - p.hip_turn_deg.to_radians(),
+            pitch: self.q.y,
+            roll: self.q.z,
+        }
+    }
+
+    /// The waist joint's offset from its rest position, world, m.
+    pub fn waist_offset(&self) -> DVec3 {
+        DVec3::new(self.pelvis.x, -self.crouch, self.pelvis.z) - DVec3::new(WAIST_REST.x, 0.0, WAIST_REST.z)
+    }
+
+    /// The trunk's rotation in the world (the pelvis's turn and the
+    /// waist's on it; square to +Z at rest).
+    pub fn trunk_rotation(&self) -> DQuat {
+        JointAngles {
+            yaw: self.q.x,
+            pitch: self.q.y,
+            roll: self.q.z,
+        }
+        .to_quat()
+        .as_dquat()
+    }
+
+    /// The ground point under the waist joint, world.
+    pub fn pelvis(&self) -> DVec3 {
+        self.pelvis
+    }
+
+    /// Whether foot `k` (0 lead/left) is planted.
+    pub fn planted(&self, k: usize) -> bool {
+        self.feet[k].swing.is_none()
+    }
+
+    /// Foot `k`'s heel-to-toe midpoint, world.
+    pub fn foot(&self, k: usize) -> DVec3 {
+        self.feet[k].at
+    }
+
+    /// The legs' joint centres (W3), left then right; `lunge` is the
+    /// trunk's extra offset (a punch's weight shift), which the hips
+    /// follow.
+    pub fn legs(&self, p: &BodyParams, lunge: DVec3) -> [Leg; 2] {
+        let turn = DQuat::from_rotation_y(p.hip_turn_deg.to_radians());
+        let waist = WAIST_REST + self.waist_offset() + lunge;
+        [0, 1].map(|k| {
+            let sx = if k == 0 { 1.0 } else { -1.0 };
+            let hip = waist + turn * DVec3::new(sx * anthro::HIP_HALF, -anthro::HIP_BELOW_WAIST, 0.0);
+            leg_ik(hip, self.feet[k].at, foot_yaw(p, k), sx)
+        })
+    }
+}
+
+/// Foot `k`'s place relative to the pelvis (the stance).
+fn place(p: &BodyParams, k: usize) -> DVec3 {
+    let [x, z] = p.lead_foot;
+    let turn = DQuat::from_rotation_y(p.hip_turn_deg.to_radians());
+    let v = if k == 0 {
+        DVec3::new(x, 0.0, z)
+    } else {
+        DVec3::new(-x, 0.0, -z)
+    };
+    turn * v
+}
+
+/// Foot `k`'s heading (yaw about +Y, 0 along +Z): the lead foot points at
+/// the opponent, the rear foot turned out 40 deg, as in a boxer's stance.
+fn foot_yaw(p: &BodyParams, k: usize) -> f64 {
+    let out = if k == 0 { 0.0 } else { -40f64.to_radians() };
+    0.5 * p.hip_turn_deg.to_radians() + out
+}
+
+/// W3: the leg's joints for a hip and a foot (midpoint on the ground,
+/// heading `yaw`); `sx` +1 for the left leg.
+fn leg_ik(hip: DVec3, foot: DVec3, yaw: f64, sx: f64) -> Leg {
+    use anthro::{ANKLE_FROM_HEEL, ANKLE_HEIGHT, FOOT_LENGTH, SHANK, THIGH};
+    let fwd = DVec3::new(yaw.sin(), 0.0, yaw.cos());
+    let heel0 = foot - fwd * FOOT_LENGTH / 2.0;
+    let toe = heel0 + fwd * FOOT_LENGTH * 0.78;
+    let reach = THIGH + SHANK - 1e-3;
+    // The ankle, on the planted foot; out of reach, the heel lifts about
+    // the toes until it is in reach (at most 50 deg).
+    let ankle_at = |lift: f64| {
+        let r = DQuat::from_axis_angle(fwd.cross(DVec3::Y).normalize(), -lift);
+        let heel = toe + r * (heel0 - toe);
+        let ankle = heel + r * (fwd * FOOT_LENGTH * ANKLE_FROM_HEEL + DVec3::Y * ANKLE_HEIGHT);
+        (heel, ankle)
+    };
+    let mut lift = 0.0;
+    let (mut heel, mut ankle) = ankle_at(0.0);
+    while (ankle - hip).length() > reach && lift < 50f64.to_radians() {
+        lift += 1f64.to_radians();
+        (heel, ankle) = ankle_at(lift);
+    }
+    let d = ankle - hip;
+    let r = d.length().min(reach);
+    let dir = d.normalize_or(DVec3::NEG_Y);
+    // Knee forward (along the foot) and slightly out.
+    let hint = (fwd + DVec3::X * sx * 0.15).normalize();
+    let side = (hint - dir * hint.dot(dir)).normalize_or(DVec3::Z);
+    let cos_a = ((THIGH * THIGH + r * r - SHANK * SHANK) / (2.0 * THIGH * r)).clamp(-1.0, 1.0);
+    let a = cos_a.acos();
+    let knee = hip + (dir * a.cos() + side * a.sin()) * THIGH;
+    Leg {
+        hip,
+        knee,
+        ankle,
+        toe,
+        heel,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn run(lb: &mut LowerBody, p: &BodyParams, cmd: impl Fn(f64) -> BodyCommand, secs: f64) {
+        let dt = 1e-3;
+        for i in 0..(secs / dt) as usize {
+            let t = i as f64 * dt;
+            lb.step(p, &cmd(t), t, dt);
+        }
+    }
+
+    #[test]
+    fn legs_reach_the_ground_at_rest() {
+        let p = BodyParams::default();
+        let lb = LowerBody::new(&p);
+        for leg in lb.legs(&p, DVec3::ZERO) {
+            assert!((leg.knee - leg.hip).length() - anthro::THIGH < 1e-6);
+            assert!(((leg.ankle - leg.knee).length() - anthro::SHANK).abs() < 1e-6);
+            assert!((leg.heel.y).abs() < 1e-9, "heel on the canvas: {}", leg.heel.y);
+            assert!(leg.knee.y > leg.ankle.y && leg.knee.y < leg.hip.y);
+        }
+    }
+
+    #[test]
+    fn planted_feet_do_not_slide_and_the_body_steps_back() {
+        let p = BodyParams::default();
+        let mut lb = LowerBody::new(&p);
+        let start = [lb.foot(0), lb.foot(1)];
+        // The pelvis goes 0.4 m back over 1 s.
+        let cmd = |t: f64| BodyCommand {
+            pelvis: DVec3::new(0.0, 0.0, -0.4 * min_jerk(t)),
+            ..Default::default()
+        };
+        let dt = 1e-3;
+        let mut last = start;
+        for i in 0..2000 {
+            let t = i as f64 * dt;
+            lb.step(&p, &cmd(t), t, dt);
+            for k in 0..2 {
+                if lb.planted(k) && i > 0 {
+                    assert!((lb.foot(k) - last[k]).length() < 1e-9, "foot {k} slid at {t}");
+                }
+                last[k] = lb.foot(k);
+            }
+        }
+        assert!(lb.steps >= 2, "it stepped: {}", lb.steps);
+        for k in 0..2 {
+            let moved = lb.foot(k) - start[k];
+            assert!((moved.z + 0.4).abs() < p.step_trigger, "foot {k} followed: {moved}");
+        }
+    }
+
+    #[test]
+    fn the_waist_follows_its_command_within_its_strength() {
+        let p = BodyParams::default();
+        let mut lb = LowerBody::new(&p);
+        let cmd = BodyCommand {
+            waist: [DVec3::new(0.0, -0.4, 0.25), DVec3::ZERO, DVec3::ZERO],
+            ..Default::default()
+        };
+        run(&mut lb, &p, |_| cmd, 0.1);
+        let early = lb.q;
+        run(&mut lb, &p, |_| cmd, 1.5);
+        assert!(early.y > -0.3, "a step command takes time: {early}");
+        assert!((lb.q - cmd.waist[0]).length() < 0.01, "settled: {}", lb.q);
+        let w = lb.waist(&p);
+        assert!((w.yaw - 15f64.to_radians()).abs() < 0.01, "hips turned under the trunk");
+    }
+}
