@@ -124,7 +124,6 @@ const HAIR: [f32; 4] = {
     [h[0], h[1], h[2], 1.0]
 };
 const PROP: [f32; 4] = [0.85, 0.65, 0.12, 1.0];
-const STAND: [f32; 4] = [0.30, 0.30, 0.32, 1.0];
 const WHITE: [f32; 4] = [1.0, 1.0, 1.0, 1.0];
 /// Ears are a little redder than the face.
 const EAR: [f32; 4] = [SKIN[0] * 1.04, SKIN[1] * 0.95, SKIN[2] * 0.95, 1.0];
@@ -147,7 +146,12 @@ impl Frame {
         // shading the floor behind the bodies (early depth test).
         let mut draws = Vec::new();
         let looks = Looks::of(&w.plan);
-        let body = posed(&looks.vh, &vh_pose(|s| w.pose(s), &w.plan));
+        let legs = sim
+            .params()
+            .body
+            .human
+            .then(|| sim.lower.legs(&sim.params().body));
+        let body = posed(&looks.vh, &vh_pose(|s| w.pose(s), &w.plan, legs.as_ref()));
         let (you_head, you_gloves) = (
             w.position(w.part(OpponentPart::Head)),
             [OpponentPart::LeftGlove, OpponentPart::RightGlove].map(|g| w.position(w.part(g))),
@@ -253,14 +257,7 @@ impl Frame {
             color: WHITE,
             material: Material::Hair,
         });
-        // The ring and the hall, last (behind the fighters), with the
-        // rigid stand the VH's torso sits on (not a physics body).
-        draws.push(Draw {
-            mesh: capsule_key(0.5, 0.035),
-            model: Mat4::from_translation(Vec3::new(0.0, 0.5, 0.0)),
-            color: STAND,
-            material: Material::Plain,
-        });
+        // The ring and the hall, last (behind the fighters).
         draws.extend(super::ring::draws());
         let mut frame = Frame {
             camera,

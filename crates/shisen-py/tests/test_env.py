@@ -55,9 +55,9 @@ def test_the_registered_id_and_a_vector_of_envs():
 
     env = gym.make("shisen/Boxing-v0", episode_seconds=0.2)
     obs, _ = env.reset(seed=0)
-    assert obs.shape == (27,)
+    assert obs.shape == (30,)
     vec = make_vec(2, episode_seconds=0.2)
     obs, _ = vec.reset(seed=[0, 1])
-    assert obs.shape == (2, 27)
+    assert obs.shape == (2, 30)
     obs, r, term, trunc, _ = vec.step(np.zeros((2, 9), dtype=np.float32))
     assert r.shape == (2,)

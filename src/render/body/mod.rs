@@ -1,6 +1,8 @@
-//! A procedural, linear-blend-skinned upper body (torso in a sleeveless
-//! vest, neck, arms, boxing gloves) drawn for the VH and for your avatar in
-//! place of the collision shapes. The head is the face mesh, drawn apart.
+//! A procedural, linear-blend-skinned body (torso in a sleeveless vest,
+//! neck, arms, boxing gloves; trunks, legs and boxing shoes) drawn for the
+//! VH and for your avatar in place of the collision shapes. The head is the
+//! face mesh, drawn apart. The legs' bones follow the lower body's joint
+//! centres ([`shisen::physics::lower::Leg`]).
 //!
 //! Construction: every part is a grid of rings (a tube) in the rest pose of
 //! [`BodyPlan`] (arms hanging, forearms forward), closed by poles. The torso's
@@ -23,8 +25,9 @@
 
 mod shape;
 
-use glam::{Mat4, Quat, Vec3};
+use glam::{Mat3, Mat4, Quat, Vec3};
 use shisen::physics::body::{BodyPlan, Seg, arm_ik};
+use shisen::physics::lower::{BodyParams, Leg, LowerBody, WAIST_REST};
 
 use super::geometry::Vertex;
 
@@ -44,16 +47,41 @@ pub enum Bone {
     UpperArmR,
     /// Right forearm and glove.
     ForearmR,
+    /// The pelvis (trunks), under the waist joint.
+    Pelvis,
+    /// Left thigh.
+    ThighL,
+    /// Left shank.
+    ShinL,
+    /// Left foot.
+    FootL,
+    /// Right thigh.
+    ThighR,
+    /// Right shank.
+    ShinR,
+    /// Right foot.
+    FootR,
 }
 
 impl Bone {
     /// Number of bones.
-    pub const COUNT: usize = 6;
+    pub const COUNT: usize = 13;
     /// Every bone, in index order.
     pub const ALL: [Bone; Bone::COUNT] = {
         use Bone::*;
-        [Torso, Head, UpperArmL, ForearmL, UpperArmR, ForearmR]
+        [
+            Torso, Head, UpperArmL, ForearmL, UpperArmR, ForearmR, Pelvis, ThighL, ShinL, FootL,
+            ThighR, ShinR, FootR,
+        ]
     };
+
+    /// Thigh, shank and foot of `side` (0 = left).
+    pub fn leg(side: usize) -> [Bone; 3] {
+        [
+            [Bone::ThighL, Bone::ShinL, Bone::FootL],
+            [Bone::ThighR, Bone::ShinR, Bone::FootR],
+        ][side]
+    }
 
     /// Upper arm of `side` (0 = left).
     pub fn upper_arm(side: usize) -> Bone {
@@ -65,8 +93,9 @@ impl Bone {
         [Bone::ForearmL, Bone::ForearmR][side]
     }
 
-    /// The physics segment that drives the bone.
-    pub fn segment(self) -> Seg {
+    /// The physics segment that drives the bone (the legs' are not
+    /// physical).
+    pub fn segment(self) -> Option<Seg> {
         [
             Seg::Torso,
             Seg::Head,
@@ -74,7 +103,9 @@ impl Bone {
             Seg::ForearmL,
             Seg::UpperArmR,
             Seg::ForearmR,
-        ][self as usize]
+        ]
+        .get(self as usize)
+        .copied()
     }
 }
 
@@ -96,6 +127,10 @@ pub struct BodyStyle {
     pub glove: [f32; 4],
     /// The stripe round each glove's cuff.
     pub cuff: [f32; 4],
+    /// Boxing trunks.
+    pub trunks: [f32; 4],
+    /// Boxing shoes.
+    pub shoes: [f32; 4],
 }
 
 impl BodyStyle {
@@ -105,6 +140,8 @@ impl BodyStyle {
         shirt: [0.16, 0.22, 0.40, 1.0],
         glove: [0.70, 0.06, 0.05, 1.0],
         cuff: CUFF,
+        trunks: [0.55, 0.05, 0.06, 1.0],
+        shoes: [0.05, 0.05, 0.06, 1.0],
     };
     /// You: the same skin, a grey vest, blue gloves.
     pub const YOU: BodyStyle = BodyStyle {
@@ -112,6 +149,8 @@ impl BodyStyle {
         shirt: [0.30, 0.31, 0.33, 1.0],
         glove: [0.08, 0.22, 0.75, 1.0],
         cuff: CUFF,
+        trunks: [0.06, 0.14, 0.45, 1.0],
+        shoes: [0.85, 0.85, 0.82, 1.0],
     };
 }
 
@@ -148,6 +187,7 @@ enum Part {
     Arm(usize),
     Cuff(usize),
     Fist(usize),
+    Leg,
 }
 
 /// The skinned upper-body mesh.
@@ -198,20 +238,74 @@ impl BodyMesh {
 
 /// The VH's pose from its physics segments: `world_poses(segment)` gives a
 /// segment's current world position (its centre, where [`BodyPlan`] puts it
-/// at rest) and rotation (identity at rest).
-pub fn vh_pose(world_poses: impl Fn(Seg) -> (Vec3, Quat), plan: &BodyPlan) -> Pose {
-    Bone::ALL.map(|b| {
-        let (p, q) = world_poses(b.segment());
-        Mat4::from_rotation_translation(q, p)
-            * Mat4::from_translation(-plan.segments[b.segment().index()].centre)
-    })
+/// at rest) and rotation (identity at rest); `legs` are the lower body's
+/// joint centres now (`None`: the legs stay at rest).
+pub fn vh_pose(
+    world_poses: impl Fn(Seg) -> (Vec3, Quat),
+    plan: &BodyPlan,
+    legs: Option<&[Leg; 2]>,
+) -> Pose {
+    let mut pose = REST_POSE;
+    for b in Bone::ALL {
+        if let Some(s) = b.segment() {
+            let (p, q) = world_poses(s);
+            pose[b as usize] = Mat4::from_rotation_translation(q, p)
+                * Mat4::from_translation(-plan.segments[s.index()].centre);
+        }
+    }
+    if let Some(legs) = legs {
+        set_legs(&mut pose, legs);
+    }
+    pose
+}
+
+/// The legs at rest (the default stance), the mesh's rest pose.
+pub fn rest_legs() -> [Leg; 2] {
+    let p = BodyParams::default();
+    LowerBody::new(&p).legs(&p)
+}
+
+/// A bone's frame: origin `a`, first axis along `a -> b`, third axis
+/// normal to the plane it shares with `toward`.
+fn bone_frame(a: Vec3, b: Vec3, toward: Vec3) -> Mat4 {
+    let u = (b - a).normalize();
+    let w = u.cross(toward - a).normalize_or(Vec3::X);
+    let v = w.cross(u);
+    Mat4::from_mat3_translation(Mat3::from_cols(u, v, w), a)
+}
+
+/// Set the pelvis and legs' bones from the legs' joint centres now.
+fn set_legs(pose: &mut Pose, legs: &[Leg; 2]) {
+    let rest = rest_legs();
+    let mid = |l: &[Leg; 2]| (l[0].hip + l[1].hip) / 2.0;
+    let shift = (mid(legs) - mid(&rest)).as_vec3();
+    pose[Bone::Pelvis as usize] = Mat4::from_translation(shift);
+    for side in 0..2 {
+        let frames = |l: &Leg| {
+            let [h, k, a, t] = [l.hip, l.knee, l.ankle, l.toe].map(|v| v.as_vec3());
+            [
+                bone_frame(h, k, a),
+                bone_frame(k, a, h),
+                bone_frame(l.heel.as_vec3(), t, l.heel.as_vec3() + Vec3::Y),
+            ]
+        };
+        let (now, then) = (frames(&legs[side]), frames(&rest[side]));
+        for (i, b) in Bone::leg(side).into_iter().enumerate() {
+            pose[b as usize] = now[i] * then[i].inverse();
+        }
+    }
+}
+
+/// The waist joint at rest, single precision.
+fn waist_rest() -> Vec3 {
+    WAIST_REST.as_vec3()
 }
 
 /// Rest landmarks of one arm: shoulder, elbow, glove centre, unit
 /// directions of upper arm and forearm.
 fn arm_frame(plan: &BodyPlan, side: usize) -> (Vec3, Vec3, Vec3, Vec3, Vec3) {
-    let s = plan.segments[Bone::upper_arm(side).segment().index()].pivot;
-    let e = plan.segments[Bone::forearm(side).segment().index()].pivot;
+    let s = plan.segments[Bone::upper_arm(side).segment().expect("physical").index()].pivot;
+    let e = plan.segments[Bone::forearm(side).segment().expect("physical").index()].pivot;
     let g = plan.segments[[Seg::GloveL, Seg::GloveR][side].index()].centre;
     (s, e, g, (e - s).normalize(), (g - e).normalize())
 }
@@ -346,7 +440,7 @@ mod tests {
     fn mesh_is_well_formed() {
         let (plan, m) = mesh();
         let n = m.vertices.len();
-        assert!((3000..=8000).contains(&n), "{n} vertices");
+        assert!((3000..=10_000).contains(&n), "{n} vertices");
         assert_eq!(m, BodyMesh::new(&plan, &BodyStyle::VH), "deterministic");
         let p = posed(&m, &REST_POSE);
         for list in [&m.indices, &m.arm_indices] {
@@ -398,15 +492,20 @@ mod tests {
             let lunge = Mat4::from_translation(Vec3::new(0.02, 0.0, 0.1));
             let pose = reach(&plan, targets).map(|m| lunge * m);
             let world = |s: Seg| {
-                let m = pose[Bone::ALL.iter().position(|b| b.segment() == s).unwrap()];
+                let m = pose[Bone::ALL
+                    .iter()
+                    .position(|b| b.segment() == Some(s))
+                    .unwrap()];
                 (
                     m.transform_point3(plan.segments[s.index()].centre),
                     m.to_scale_rotation_translation().1,
                 )
             };
-            let from_physics = vh_pose(world, &plan);
-            for (a, b) in from_physics.iter().zip(&pose) {
-                assert!(a.abs_diff_eq(*b, 1e-5), "{a} vs {b}");
+            let from_physics = vh_pose(world, &plan, None);
+            for (bone, (a, b)) in Bone::ALL.iter().zip(from_physics.iter().zip(&pose)) {
+                if bone.segment().is_some() {
+                    assert!(a.abs_diff_eq(*b, 1e-5), "{a} vs {b}");
+                }
             }
             let p = posed(&m, &from_physics);
             for side in 0..2 {
@@ -417,6 +516,54 @@ mod tests {
                 assert!(got.distance(target) < 0.01, "{got} vs {target}");
             }
         }
+    }
+
+    #[test]
+    fn shoes_stand_on_the_canvas_and_follow_the_feet() {
+        use glam::DVec3;
+        use shisen::physics::lower::BodyCommand;
+        let (plan, m) = mesh();
+        let shoes = |pose: &Pose| {
+            let p = posed(&m, pose);
+            let v: Vec<Vec3> = p
+                .iter()
+                .zip(&m.vertices)
+                .filter(|(_, v)| v.color == BodyStyle::VH.shoes)
+                .map(|(p, _)| *p)
+                .collect();
+            let low = v.iter().map(|p| p.y).fold(f32::MAX, f32::min);
+            let mean = v.iter().copied().sum::<Vec3>() / v.len() as f32;
+            (low, mean)
+        };
+        let (low, rest_mean) = shoes(&REST_POSE);
+        assert!(low.abs() < 0.01, "soles on the canvas at rest: {low}");
+        // The lower body walks 0.3 m back; the shoes go with the feet.
+        let p = BodyParams::default();
+        let mut lb = LowerBody::new(&p);
+        for i in 0..2000 {
+            let t = f64::from(i) * 1e-3;
+            let cmd = BodyCommand {
+                pelvis: DVec3::new(0.0, 0.0, -0.3 * (t / 0.5).min(1.0)),
+                ..Default::default()
+            };
+            lb.step(&p, &cmd, t, 1e-3);
+        }
+        let legs = lb.legs(&p);
+        let pose = vh_pose(
+            |s| (plan.segments[s.index()].centre, Quat::IDENTITY),
+            &plan,
+            Some(&legs),
+        );
+        let (low, mean) = shoes(&pose);
+        assert!(
+            low.abs() < 0.01,
+            "soles on the canvas after stepping: {low}"
+        );
+        assert!(
+            ((mean - rest_mean).z + 0.3).abs() < 0.09,
+            "shoes moved back: {}",
+            mean - rest_mean
+        );
     }
 
     #[test]

@@ -10,7 +10,7 @@ use shisen::util::math::{gauss, hermite, smoothstep};
 
 use shisen_face::mesh::compute_normals;
 
-use super::{BodyMesh, BodyStyle, Bone, Part, SkinVertex, arm_frame};
+use super::{BodyMesh, BodyStyle, Bone, Part, SkinVertex, arm_frame, rest_legs, waist_rest};
 
 type Weights = ([u8; 4], [f32; 4]);
 
@@ -218,7 +218,8 @@ fn torso(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle) {
     };
     let k = half / Vec3::new(0.16, 0.25, 0.10);
     let origin = t.centre - Vec3::Y * half.y;
-    let shoulders = [0, 1].map(|s| plan.segments[Bone::upper_arm(s).segment().index()].pivot);
+    let shoulders = [0, 1]
+        .map(|s| plan.segments[Bone::upper_arm(s).segment().expect("physical").index()].pivot);
     let point = |d: Vec3| {
         let p = origin + (d - Vec3::Y) * k;
         let arm = shoulders.map(|s| 0.5 * (1.0 - smoothstep(0.03, 0.085, p.distance(s))));
@@ -418,6 +419,141 @@ fn glove(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle, side: usize) {
     b.grid(&rings, [None, Some(pole)], Dest::MainAndArm(0));
 }
 
+/// Rings along `a -> b` (`n` + 1 of them, `cols` points each), elliptic
+/// with half-axes `radius(f)` (along `side`, and across) at the fraction
+/// `f` along, each point made by `pt(position, f)`; poles close both ends.
+#[allow(clippy::too_many_arguments)]
+fn tube(
+    b: &mut Builder,
+    a: Vec3,
+    e: Vec3,
+    side: Vec3,
+    n: usize,
+    cols: usize,
+    radius: impl Fn(f32) -> (f32, f32),
+    pt: impl Fn(Vec3, f32) -> Pt,
+) {
+    let d = (e - a).normalize();
+    let u = (side - d * side.dot(d)).normalize();
+    let v = d.cross(u);
+    let rings: Vec<Vec<Pt>> = (0..=n)
+        .map(|i| {
+            let f = i as f32 / n as f32;
+            let (ru, rv) = radius(f);
+            let c = a + (e - a) * f;
+            ring(cols, |th| pt(c + u * th.cos() * ru + v * th.sin() * rv, f))
+        })
+        .collect();
+    let (r0, r1) = (radius(0.0).0, radius(1.0).0);
+    let poles = [pt(a - d * r0 * 0.5, 0.0), pt(e + d * r1 * 0.5, 1.0)];
+    b.grid(&rings, poles.map(Some), Dest::Main);
+}
+
+/// Trunks over the pelvis (their waistband follows the trunk), thighs,
+/// shanks with high boxing shoes, in the lower body's rest stance.
+fn legs(b: &mut Builder, style: &BodyStyle) {
+    let waist = waist_rest();
+    let legs = rest_legs();
+    // The trunks: an elliptic tube from inside the vest down to the crotch.
+    let top = waist + Vec3::Y * 0.07;
+    let bottom = waist - Vec3::Y * 0.2;
+    tube(
+        b,
+        top,
+        bottom,
+        Vec3::X,
+        8,
+        TORSO_COLS,
+        |f| {
+            let hips = 0.138 + 0.04 * smoothstep(0.0, 0.5, f);
+            (hips, 0.1 + 0.01 * smoothstep(0.2, 0.6, f))
+        },
+        |p, f| {
+            let trunk = 0.8 * (1.0 - smoothstep(0.15, 0.45, f));
+            let w = weights(&[(Bone::Torso, trunk), (Bone::Pelvis, 1.0 - trunk)]);
+            Pt(p, style.trunks, w, Part::Leg, NO_BORDER)
+        },
+    );
+    for (side, leg) in legs.iter().enumerate() {
+        let [hip, knee, ankle, toe, heel] =
+            [leg.hip, leg.knee, leg.ankle, leg.toe, leg.heel].map(|v| v.as_vec3());
+        let [thigh, shin, foot] = Bone::leg(side);
+        let fwd = (toe - heel).normalize();
+        // Thigh: trunks over its upper part, the knee blends into the shank.
+        let along = (knee - hip).length();
+        tube(
+            b,
+            hip + (hip - knee).normalize() * 0.02,
+            knee,
+            fwd,
+            10,
+            ARM_COLS,
+            |f| {
+                let r = 0.085 - 0.03 * smoothstep(0.1, 1.0, f);
+                let shorts = if f < 0.42 { 0.008 } else { 0.0 };
+                (r + shorts, r * 0.95 + shorts)
+            },
+            |p, f| {
+                let k = smoothstep(0.8, 1.0, f);
+                let pel = 0.5 * (1.0 - smoothstep(0.0, 0.2, f));
+                let w = weights(&[(Bone::Pelvis, pel), (thigh, 1.0 - pel - k), (shin, k)]);
+                let colour = if f * along < 0.42 * along {
+                    style.trunks
+                } else {
+                    style.skin
+                };
+                Pt(p, colour, w, Part::Leg, NO_BORDER)
+            },
+        );
+        // Shank with the calf, into a high shoe above the ankle.
+        tube(
+            b,
+            knee,
+            ankle,
+            fwd,
+            10,
+            ARM_COLS,
+            |f| {
+                let calf = 0.012 * gauss(f - 0.3, 0.2);
+                let r = 0.054 - 0.02 * smoothstep(0.2, 0.9, f) + calf;
+                let shoe = if f > 0.72 { 0.006 } else { 0.0 };
+                (r + shoe, r * 1.05 + calf + shoe)
+            },
+            |p, f| {
+                let k = 1.0 - smoothstep(0.0, 0.15, f);
+                let w = weights(&[(thigh, k), (shin, 1.0 - k)]);
+                let colour = if f > 0.72 { style.shoes } else { style.skin };
+                Pt(p, colour, w, Part::Leg, NO_BORDER)
+            },
+        );
+        // The shoe: a rounded box along the foot on the sole.
+        let up = Vec3::Y;
+        let sole = 0.045;
+        tube(
+            b,
+            heel - fwd * 0.01 + up * sole,
+            toe + fwd * 0.055 + up * sole * 0.8,
+            fwd.cross(up),
+            8,
+            ARM_COLS,
+            |f| {
+                let w = 0.036 + 0.012 * smoothstep(0.0, 0.7, f) - 0.015 * smoothstep(0.85, 1.0, f);
+                let h = 0.044 - 0.012 * smoothstep(0.5, 1.0, f);
+                (w, h)
+            },
+            |p, _| {
+                Pt(
+                    p,
+                    style.shoes,
+                    weights(&[(foot, 1.0)]),
+                    Part::Leg,
+                    NO_BORDER,
+                )
+            },
+        );
+    }
+}
+
 impl BodyMesh {
     /// Build the body for `plan`'s rest pose, coloured by `style`.
     /// Deterministic.
@@ -429,6 +565,7 @@ impl BodyMesh {
             arm(&mut b, plan, style, side);
             glove(&mut b, plan, style, side);
         }
+        legs(&mut b, style);
         let positions: Vec<Vec3> = b.verts.iter().map(|v| Vec3::from_array(v.pos)).collect();
         let normals = compute_normals(&positions, b.all.as_chunks::<3>().0);
         for (v, n) in b.verts.iter_mut().zip(normals) {

@@ -30,14 +30,14 @@ pub enum Evasion {
 /// The waist's turn and bend (yaw, pitch, roll from neutral, rad; pitch
 /// positive back) and the knees' dip (m) that carry out an evasion.
 /// Slip: 12 deg of lateral bend and 9 deg of turn take the head about
-/// 15 cm sideways; duck: 13 cm of knee bend and 11 deg forward; lean back
+/// 15 cm sideways; duck: 16 cm of knee bend and 17 deg forward; lean back
 /// 13 deg. Magnitudes are ours, sized so each takes the head at least a
 /// head's width (15 cm) off its line.
 fn evasion_posture(e: Evasion, right: bool) -> (DVec3, f64) {
     let s = if right { 1.0 } else { -1.0 };
     match e {
         Evasion::Slip => (DVec3::new(-0.15 * s, 0.0, 0.26 * s), 0.05),
-        Evasion::Duck => (DVec3::new(0.0, -0.2, 0.0), 0.13),
+        Evasion::Duck => (DVec3::new(0.0, -0.3, 0.0), 0.16),
         Evasion::LeanBack => (DVec3::new(0.0, 0.23, 0.0), 0.0),
     }
 }

@@ -381,9 +381,7 @@ impl Behaviour {
     pub fn target_name<'a>(&'a self, names: &'a [String]) -> Option<&'a str> {
         match &self.plan {
             Plan::Idle => None,
-            Plan::Guard { threat, .. } | Plan::Evade { threat, .. } => {
-                Some(&names[threat.index()])
-            }
+            Plan::Guard { threat, .. } | Plan::Evade { threat, .. } => Some(&names[threat.index()]),
             Plan::Attack { target, .. } => Some(&target.name),
         }
     }
@@ -437,7 +435,9 @@ impl Behaviour {
             let evading = matches!(self.plan, Plan::Evade { .. });
             let head = view.vh_points[0];
             let opp = opponent_head.map(|h| h.position);
-            if let Some((kind, right)) = choose_evasion(pers, g, head, opp, rng).filter(|_| !evading) {
+            if let Some((kind, right)) =
+                choose_evasion(pers, g, head, opp, rng).filter(|_| !evading)
+            {
                 self.body.evade(kind, right, t, p);
                 self.evasions += 1;
                 self.plan = Plan::Evade {
@@ -484,7 +484,11 @@ impl Behaviour {
             }
         }
         match self.plan.clone() {
-            Plan::Evade { threat, kind, until } => {
+            Plan::Evade {
+                threat,
+                kind,
+                until,
+            } => {
                 if t >= until {
                     self.body.recover(t);
                     self.plan = Plan::Idle;

@@ -34,7 +34,7 @@ from . import Scene
 #: VH) axes. A glove's 0.45 m forward is a full reach to the VH's head.
 HEAD_REACH = np.array([0.15, 0.15, 0.15])
 GLOVE_REACH = np.array([0.30, 0.30, 0.45])
-ACTIONS = ("idle", "guard", "attack")
+ACTIONS = ("idle", "guard", "attack", "slip", "duck", "leanback")
 PARTS = ("head", "left_glove", "right_glove")
 
 
@@ -68,7 +68,7 @@ class BoxingEnv(gym.Env):
         self.taken_penalty = taken_penalty
         self.action_space = spaces.Box(-1.0, 1.0, shape=(9,), dtype=np.float32)
         # Positions within 5 m of the ring's centre; the action one-hot in [0, 1].
-        self.observation_space = spaces.Box(-5.0, 5.0, shape=(27,), dtype=np.float32)
+        self.observation_space = spaces.Box(-5.0, 5.0, shape=(30,), dtype=np.float32)
         self.sim = None
         self._rest = None
         self._tally = None

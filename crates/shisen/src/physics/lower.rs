@@ -319,7 +319,8 @@ impl LowerBody {
 
     /// The waist joint's offset from its rest position, world, m.
     pub fn waist_offset(&self) -> DVec3 {
-        DVec3::new(self.pelvis.x, -self.crouch, self.pelvis.z) - DVec3::new(WAIST_REST.x, 0.0, WAIST_REST.z)
+        DVec3::new(self.pelvis.x, -self.crouch, self.pelvis.z)
+            - DVec3::new(WAIST_REST.x, 0.0, WAIST_REST.z)
     }
 
     /// The trunk's rotation in the world (the pelvis's turn and the
@@ -349,15 +350,14 @@ impl LowerBody {
         self.feet[k].at
     }
 
-    /// The legs' joint centres (W3), left then right; `lunge` is the
-    /// trunk's extra offset (a punch's weight shift), which the hips
-    /// follow.
-    pub fn legs(&self, p: &BodyParams, lunge: DVec3) -> [Leg; 2] {
+    /// The legs' joint centres (W3), left then right.
+    pub fn legs(&self, p: &BodyParams) -> [Leg; 2] {
         let turn = DQuat::from_rotation_y(p.hip_turn_deg.to_radians());
-        let waist = WAIST_REST + self.waist_offset() + lunge;
+        let waist = WAIST_REST + self.waist_offset();
         [0, 1].map(|k| {
             let sx = if k == 0 { 1.0 } else { -1.0 };
-            let hip = waist + turn * DVec3::new(sx * anthro::HIP_HALF, -anthro::HIP_BELOW_WAIST, 0.0);
+            let hip =
+                waist + turn * DVec3::new(sx * anthro::HIP_HALF, -anthro::HIP_BELOW_WAIST, 0.0);
             leg_ik(hip, self.feet[k].at, foot_yaw(p, k), sx)
         })
     }
@@ -438,10 +438,14 @@ mod tests {
     fn legs_reach_the_ground_at_rest() {
         let p = BodyParams::default();
         let lb = LowerBody::new(&p);
-        for leg in lb.legs(&p, DVec3::ZERO) {
+        for leg in lb.legs(&p) {
             assert!((leg.knee - leg.hip).length() - anthro::THIGH < 1e-6);
             assert!(((leg.ankle - leg.knee).length() - anthro::SHANK).abs() < 1e-6);
-            assert!((leg.heel.y).abs() < 1e-9, "heel on the canvas: {}", leg.heel.y);
+            assert!(
+                (leg.heel.y).abs() < 1e-9,
+                "heel on the canvas: {}",
+                leg.heel.y
+            );
             assert!(leg.knee.y > leg.ankle.y && leg.knee.y < leg.hip.y);
         }
     }
@@ -457,21 +461,30 @@ mod tests {
             ..Default::default()
         };
         let dt = 1e-3;
-        let mut last = start;
+        let (mut last, mut was_planted) = (start, [true; 2]);
         for i in 0..2000 {
             let t = i as f64 * dt;
             lb.step(&p, &cmd(t), t, dt);
             for k in 0..2 {
-                if lb.planted(k) && i > 0 {
-                    assert!((lb.foot(k) - last[k]).length() < 1e-9, "foot {k} slid at {t}");
+                // Planted through the whole tick: it did not move.
+                if lb.planted(k) && was_planted[k] {
+                    assert!(
+                        (lb.foot(k) - last[k]).length() < 1e-9,
+                        "foot {k} slid at {t}"
+                    );
                 }
+                assert!(lb.foot(k).y >= 0.0, "foot {k} below the canvas at {t}");
                 last[k] = lb.foot(k);
+                was_planted[k] = lb.planted(k);
             }
         }
         assert!(lb.steps >= 2, "it stepped: {}", lb.steps);
         for k in 0..2 {
             let moved = lb.foot(k) - start[k];
-            assert!((moved.z + 0.4).abs() < p.step_trigger, "foot {k} followed: {moved}");
+            assert!(
+                (moved.z + 0.4).abs() < p.step_trigger,
+                "foot {k} followed: {moved}"
+            );
         }
     }
 
@@ -489,6 +502,9 @@ mod tests {
         assert!(early.y > -0.3, "a step command takes time: {early}");
         assert!((lb.q - cmd.waist[0]).length() < 0.01, "settled: {}", lb.q);
         let w = lb.waist(&p);
-        assert!((w.yaw - 15f64.to_radians()).abs() < 0.01, "hips turned under the trunk");
+        assert!(
+            (w.yaw - 15f64.to_radians()).abs() < 0.01,
+            "hips turned under the trunk"
+        );
     }
 }

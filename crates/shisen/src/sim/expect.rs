@@ -785,7 +785,9 @@ fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
             offset,
         } => {
             // An evasion still under way at the end counts if it worked.
-            let open = a.evasion.map_or(0, |(_, far, touched)| u64::from(far && !touched));
+            let open = a
+                .evasion
+                .map_or(0, |(_, far, touched)| u64::from(far && !touched));
             let ok = a.hits + open;
             Verdict {
                 what: format!(
