@@ -156,7 +156,17 @@ impl Frame {
             w.position(w.part(OpponentPart::Head)),
             [OpponentPart::LeftGlove, OpponentPart::RightGlove].map(|g| w.position(w.part(g))),
         );
-        let avatar = posed(&looks.you, &avatar_pose(&w.plan, you_head, you_gloves));
+        let avatar_frame = glam::DMat4::from(sim.avatar_frame());
+        let avatar = posed(
+            &looks.you,
+            &avatar_pose(
+                &w.plan,
+                Mat4::from_cols_array(&avatar_frame.to_cols_array().map(|v| v as f32)),
+                &sim.avatar,
+                &sim.params().body.standing(),
+                you_gloves,
+            ),
+        );
         for d in [MeshKey::Avatar, MeshKey::Body] {
             draws.push(Draw {
                 mesh: d,

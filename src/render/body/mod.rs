@@ -27,7 +27,7 @@ mod shape;
 
 use glam::{Mat3, Mat4, Quat, Vec3};
 use shisen::physics::body::{BodyPlan, Seg, arm_ik};
-use shisen::physics::lower::{BodyParams, Leg, LowerBody, WAIST_REST};
+use shisen::physics::lower::{BodyParams, Carried, Leg, LowerBody, WAIST_REST};
 
 use super::geometry::Vertex;
 
@@ -277,9 +277,12 @@ fn bone_frame(a: Vec3, b: Vec3, toward: Vec3) -> Mat4 {
 /// Set the pelvis and legs' bones from the legs' joint centres now.
 fn set_legs(pose: &mut Pose, legs: &[Leg; 2]) {
     let rest = rest_legs();
-    let mid = |l: &[Leg; 2]| (l[0].hip + l[1].hip) / 2.0;
-    let shift = (mid(legs) - mid(&rest)).as_vec3();
-    pose[Bone::Pelvis as usize] = Mat4::from_translation(shift);
+    // The pelvis: through its hip joints, upright.
+    let pelvis = |l: &[Leg; 2]| {
+        let [r, l] = [l[1].hip, l[0].hip].map(|v| v.as_vec3());
+        bone_frame(r, l, r + Vec3::Y)
+    };
+    pose[Bone::Pelvis as usize] = pelvis(legs) * pelvis(&rest).inverse();
     for side in 0..2 {
         let frames = |l: &Leg| {
             let [h, k, a, t] = [l.hip, l.knee, l.ankle, l.toe].map(|v| v.as_vec3());
@@ -321,16 +324,37 @@ fn arm_mats(plan: &BodyPlan, side: usize, shoulder: Quat, elbow: Quat) -> [Mat4;
     [upper, upper * about(elbow, e)]
 }
 
-/// Your avatar's pose: the body turned to face the VH (looking along -Z, its
-/// left on world -X), hung upright from its head centre `head` (the head
-/// bone's rest centre is the plan's head centre), arms solved with
-/// [`arm_ik`] so the glove centres reach `gloves` (`gloves[0]` your left).
-pub fn avatar_pose(plan: &BodyPlan, head: Vec3, gloves: [Vec3; 2]) -> Pose {
-    let root = Mat4::from_translation(head)
-        * Mat4::from_rotation_y(std::f32::consts::PI)
-        * Mat4::from_translation(-plan.segments[Seg::Head.index()].centre);
+/// Your avatar's pose: its body ([`Carried`], in its own frame, placed in
+/// the world by `frame`: facing the VH) with the trunk on its waist and the
+/// legs stepping; arms solved with [`arm_ik`] so the glove centres reach
+/// `gloves` (`gloves[0]` your left).
+pub fn avatar_pose(
+    plan: &BodyPlan,
+    frame: Mat4,
+    body: &Carried,
+    params: &BodyParams,
+    gloves: [Vec3; 2],
+) -> Pose {
+    let lower = &body.lower;
+    let waist = waist_rest();
+    let root = frame
+        * Mat4::from_translation(waist + lower.waist_offset().as_vec3())
+        * Mat4::from_quat(lower.trunk_rotation().as_quat())
+        * Mat4::from_translation(-waist);
     let inv = root.inverse();
     let mut pose = [root; Bone::COUNT];
+    let legs = lower.legs(params).map(|l| {
+        let f = frame.as_dmat4();
+        let at = |v: glam::DVec3| f.transform_point3(v);
+        Leg {
+            hip: at(l.hip),
+            knee: at(l.knee),
+            ankle: at(l.ankle),
+            toe: at(l.toe),
+            heel: at(l.heel),
+        }
+    });
+    set_legs(&mut pose, &legs);
     for side in 0..2 {
         let target = inv.transform_point3(gloves[side]);
         let (qs, qe) = arm_ik(side, target.as_dvec3());
@@ -344,6 +368,7 @@ pub fn avatar_pose(plan: &BodyPlan, head: Vec3, gloves: [Vec3; 2]) -> Pose {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f32::consts::PI;
 
     fn mesh() -> (BodyPlan, BodyMesh) {
         let plan = BodyPlan::default();
@@ -639,14 +664,23 @@ mod tests {
     #[test]
     fn avatar_gloves_reach_the_targets() {
         let (plan, m) = mesh();
-        let head = Vec3::new(0.03, 1.70, 0.92);
+        let head = Vec3::new(0.03, 1.62, 0.80);
         let rest = posed(&m, &REST_POSE);
+        // Your avatar's frame: facing the VH from 0.92 m.
+        let frame = Mat4::from_translation(Vec3::new(0.0, 0.0, 0.92)) * Mat4::from_rotation_y(PI);
+        let p = BodyParams::default();
+        let mut body = Carried::new(&p);
+        let local = frame.inverse().transform_point3(head).as_dvec3();
+        for i in 0..1000 {
+            body.step(&p, local, f64::from(i) * 1e-3, 1e-3);
+        }
         let more = [Vec3::new(-0.05, 1.6, 0.45), Vec3::new(0.2, 1.45, 0.7)];
         for gloves in [plan.opponent_gloves, more] {
-            let pose = avatar_pose(&plan, head, gloves);
+            let pose = avatar_pose(&plan, frame, &body, &p, gloves);
+            // The trunk meets the head (ducked 6 cm, leaning 12 cm in).
             let h =
                 pose[Bone::Head as usize].transform_point3(plan.segments[Seg::Head.index()].centre);
-            assert!(h.distance(head) < 1e-5);
+            assert!(h.distance(head) < 0.01, "{h} vs {head}");
             let p = posed(&m, &pose);
             for side in 0..2 {
                 let (fore, got) = (pose[Bone::forearm(side) as usize], fist(&m, &p, side));

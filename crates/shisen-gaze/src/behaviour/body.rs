@@ -87,8 +87,10 @@ impl BodyPlan {
         self.trunk.0 + waist + self.trunk.1 * (rest - waist)
     }
 
-    fn bend_to(&mut self, to: DVec3, t0: f64, dur: f64) {
-        let from = at(&self.bend, t0);
+    /// A new waist path from where the waist is planned now (`t`), held
+    /// there until `t0`.
+    fn bend_to(&mut self, to: DVec3, t: f64, t0: f64, dur: f64) {
+        let from = at(&self.bend, t);
         self.bend = Some(Reach {
             from,
             to,
@@ -98,8 +100,8 @@ impl BodyPlan {
         });
     }
 
-    fn dip_to(&mut self, crouch: f64, t0: f64, dur: f64) {
-        let from = at(&self.dip, t0);
+    fn dip_to(&mut self, crouch: f64, t: f64, t0: f64, dur: f64) {
+        let from = at(&self.dip, t);
         self.dip = Some(Reach {
             from,
             to: DVec3::new(0.0, crouch, 0.0),
@@ -114,23 +116,24 @@ impl BodyPlan {
     pub fn evade(&mut self, e: Evasion, right: bool, t: f64, p: &BehaviourParams) {
         let (waist, crouch) = evasion_posture(e, right);
         let t0 = t + p.evade_reaction;
-        self.bend_to(waist, t0, p.evade_time);
-        self.dip_to(crouch, t0, p.evade_time);
+        self.bend_to(waist, t, t0, p.evade_time);
+        self.dip_to(crouch, t, t0, p.evade_time);
     }
 
-    /// Back to the neutral posture.
+    /// Back to the neutral posture, from where the plan is now.
     pub fn recover(&mut self, t: f64) {
-        self.bend_to(DVec3::ZERO, t, 0.35);
-        self.dip_to(0.0, t, 0.35);
+        self.bend_to(DVec3::ZERO, t, t, 0.35);
+        self.dip_to(0.0, t, t, 0.35);
     }
 
     /// The trunk's turn in a punch of `hand` (0 left, the lead hand of an
-    /// orthodox stance) lasting `dur`, out and back: the cross turns the
-    /// rear shoulder through, the jab the lead shoulder a little.
+    /// orthodox stance) lasting `dur`, out and back (to where the waist
+    /// was; the attack's end recovers from there): the cross turns the rear
+    /// shoulder through, the jab the lead shoulder a little.
     pub fn punch(&mut self, hand: usize, t: f64, dur: f64) {
         let yaw = if hand == 1 { 0.35 } else { -0.12 };
         self.bend = Some(Reach {
-            from: DVec3::ZERO,
+            from: at(&self.bend, t),
             to: DVec3::new(yaw, -0.05, 0.0),
             t0: t,
             dur,

@@ -472,7 +472,7 @@ impl Behaviour {
                         back: false,
                     });
                     if let Plan::Evade { .. } = self.plan {
-                        self.body.recover(t + p.guard_reaction);
+                        self.body.recover(t);
                     }
                 }
                 self.plan = Plan::Guard {
@@ -496,7 +496,14 @@ impl Behaviour {
                     // on the side it slipped to.
                     if p.attacks && kind == Evasion::Slip && rng.random::<f64>() < pers.counter {
                         let right = self.body.posture(t).waist.z > 0.0;
-                        return self.start_attack(usize::from(right), false, p, pers, view, t, rng);
+                        return self.start_attack(
+                            (usize::from(right), false),
+                            p,
+                            pers,
+                            view,
+                            t,
+                            rng,
+                        );
                     }
                 } else {
                     return strongest(
@@ -581,6 +588,7 @@ impl Behaviour {
                         None => self.plan = Plan::Idle,
                     }
                 } else if thrown && self.reaches[hand].is_none() {
+                    self.body.recover(t);
                     self.plan = Plan::Idle;
                 }
                 if self.plan != Plan::Idle {
@@ -597,17 +605,17 @@ impl Behaviour {
         {
             let hand = rng.random_range(0..2usize);
             let to_body = rng.random::<f64>() < p.body_shot_share;
-            return self.start_attack(hand, to_body, p, pers, view, t, rng);
+            return self.start_attack((hand, to_body), p, pers, view, t, rng);
         }
         face
     }
 
-    /// Decide to punch with `hand` at the opponent's head or body (with the
-    /// aim's random spread); the eyes go to the target first.
+    /// Decide to punch with glove `hand` at the opponent's head or body
+    /// (`to_body`), with the aim's random spread; the eyes go to the target
+    /// first.
     fn start_attack(
         &mut self,
-        hand: usize,
-        to_body: bool,
+        (hand, to_body): (usize, bool),
         p: &BehaviourParams,
         pers: &Personality,
         view: &OpponentView,

@@ -18,8 +18,9 @@
 //! ```text
 //! I q'' = clamp(I q''* + Kp (q* - q) + Kd (q'* - q'), +-tau_max)     (W1)
 //!   Kp = I (2 pi f)^2,  Kd = 2 zeta I (2 pi f)   per axis (yaw, pitch, roll)
-//! foot k steps when |place_k(pelvis) - foot_k| > trigger, the other
-//!   foot planted; it lands at place_k(pelvis at the step's end)          (W2)
+//! foot k steps when |place_k(pelvis) - foot_k| > trigger or its heel
+//!   lifts > 8 cm, the other foot planted; it lands at place_k(pelvis at
+//!   the step's end)                                                      (W2)
 //! leg: two links hip-knee-ankle, knee in the foot's plane; an ankle out
 //!   of reach lifts the heel about the toes (as a rear heel in a jab)    (W3)
 //! ```
@@ -164,6 +165,15 @@ impl Default for BodyParams {
 }
 
 impl BodyParams {
+    /// The same body standing and stepping (your avatar's, whatever the
+    /// VH's profile: the seed's VH sits on a stand, you do not).
+    pub fn standing(&self) -> Self {
+        BodyParams {
+            human: true,
+            ..self.clone()
+        }
+    }
+
     /// The seed's VH: a trunk on a stand.
     pub fn seed() -> Self {
         BodyParams {
@@ -231,6 +241,10 @@ pub struct LowerBody {
     pub steps: u32,
 }
 
+/// A planted foot whose heel the leg lifts higher than this steps, m
+/// (about 25 deg of lift: a rear heel in a cross).
+const HEEL_STEP: f64 = 0.08;
+
 /// The waist joint at rest, world (the trunk's pivot).
 pub const WAIST_REST: DVec3 = DVec3::new(0.0, 1.0, 0.0);
 
@@ -280,8 +294,15 @@ impl LowerBody {
         }
         if self.feet.iter().all(|f| f.swing.is_none()) {
             let ahead = self.pelvis + cmd.pelvis_velocity * p.step_time;
+            // A leg stretched so far that its heel lifts more than a rear
+            // heel does in a punch steps too.
+            let legs = self.legs(p);
             let far = [0, 1]
-                .map(|k| (k, (self.pelvis + place(p, k) - self.feet[k].at).length()))
+                .map(|k| {
+                    let off = (self.pelvis + place(p, k) - self.feet[k].at).length();
+                    let stretched = legs[k].heel.y > HEEL_STEP;
+                    (k, if stretched { f64::MAX } else { off })
+                })
                 .into_iter()
                 .filter(|&(_, d)| d > p.step_trigger)
                 .max_by(|a, b| a.1.total_cmp(&b.1));
@@ -363,6 +384,59 @@ impl LowerBody {
     }
 }
 
+/// A lower body carried under a head that is moved directly (your avatar,
+/// whose head and gloves the input or the script drive): the pelvis
+/// follows the head's ground point with a step's lag, the knees keep the
+/// waist a trunk's length below the head, and the waist turns the trunk so
+/// it meets the head; the feet step as the VH's do (W2). Works in the body's own
+/// frame (facing +Z, the waist joint's rest at [`WAIST_REST`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Carried {
+    /// The lower body.
+    pub lower: LowerBody,
+    pelvis: DVec3,
+}
+
+/// The head's centre above the waist joint at rest, m.
+const HEAD_ABOVE_WAIST: f64 = 0.685;
+
+impl Carried {
+    /// Standing at rest.
+    pub fn new(p: &BodyParams) -> Self {
+        let lower = LowerBody::new(p);
+        Carried {
+            pelvis: lower.pelvis,
+            lower,
+        }
+    }
+
+    /// Advance one tick with the head's centre at `head` (own frame).
+    pub fn step(&mut self, p: &BodyParams, head: DVec3, t: f64, dt: f64) {
+        let ground = DVec3::new(head.x, 0.0, head.z);
+        // The pelvis follows over about a step's time.
+        let k = (dt / 0.3).min(1.0);
+        let v = (ground - self.pelvis) / 0.3;
+        self.pelvis += (ground - self.pelvis) * k;
+        // The knees put the waist joint a trunk's length from the head.
+        let lean = (head - self.pelvis).with_y(0.0).length().min(0.6);
+        let waist_y = head.y - (HEAD_ABOVE_WAIST.powi(2) - lean * lean).sqrt();
+        let cmd = BodyCommand {
+            pelvis: self.pelvis,
+            pelvis_velocity: v,
+            waist: [DVec3::ZERO; 3],
+            crouch: (WAIST_REST.y - waist_y).clamp(0.0, 0.3),
+        };
+        self.lower.step(p, &cmd, t, dt);
+        // The trunk from the waist joint to the head, exactly.
+        let waist = WAIST_REST + self.lower.waist_offset();
+        let dir = (head - waist).normalize_or(DVec3::Y);
+        let q = DQuat::from_rotation_arc(DVec3::Y, dir);
+        let a = JointAngles::from_quat(q.as_quat());
+        self.lower.q = DVec3::new(a.yaw, a.pitch, a.roll);
+        self.lower.qd = DVec3::ZERO;
+    }
+}
+
 /// Foot `k`'s place relative to the pelvis (the stance).
 fn place(p: &BodyParams, k: usize) -> DVec3 {
     let [x, z] = p.lead_foot;
@@ -391,7 +465,8 @@ fn leg_ik(hip: DVec3, foot: DVec3, yaw: f64, sx: f64) -> Leg {
     let toe = heel0 + fwd * FOOT_LENGTH * 0.78;
     let reach = THIGH + SHANK - 1e-3;
     // The ankle, on the planted foot; out of reach, the heel lifts about
-    // the toes until it is in reach (at most 50 deg).
+    // the toes until it is in reach (at most 40 deg; the foot steps first,
+    // W2).
     let ankle_at = |lift: f64| {
         let r = DQuat::from_axis_angle(fwd.cross(DVec3::Y).normalize(), -lift);
         let heel = toe + r * (heel0 - toe);
@@ -400,7 +475,7 @@ fn leg_ik(hip: DVec3, foot: DVec3, yaw: f64, sx: f64) -> Leg {
     };
     let mut lift = 0.0;
     let (mut heel, mut ankle) = ankle_at(0.0);
-    while (ankle - hip).length() > reach && lift < 50f64.to_radians() {
+    while (ankle - hip).length() > reach && lift < 40f64.to_radians() {
         lift += 1f64.to_radians();
         (heel, ankle) = ankle_at(lift);
     }
@@ -479,8 +554,8 @@ mod tests {
             }
         }
         assert!(lb.steps >= 2, "it stepped: {}", lb.steps);
-        for k in 0..2 {
-            let moved = lb.foot(k) - start[k];
+        for (k, s) in start.iter().enumerate() {
+            let moved = lb.foot(k) - *s;
             assert!(
                 (moved.z + 0.4).abs() < p.step_trigger,
                 "foot {k} followed: {moved}"

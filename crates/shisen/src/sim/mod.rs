@@ -21,7 +21,7 @@ use rand::rngs::StdRng;
 
 use crate::physics::body::{OpponentPart, Seg, Shape, arm_ik};
 use crate::physics::control::JointTarget;
-use crate::physics::lower::{BodyCommand, LowerBody};
+use crate::physics::lower::{BodyCommand, Carried, LowerBody};
 use crate::physics::neck::{self, NeckState};
 use crate::physics::world::{PropSpec, World};
 use blows::{Blow, Blows, Tally};
@@ -114,6 +114,9 @@ pub struct Sim {
     pub neck: NeckState,
     /// Legs, feet and waist.
     pub lower: LowerBody,
+    /// Your avatar's legs, feet and waist, carried under its head (in its
+    /// own frame: see [`Sim::avatar_frame`]).
+    pub avatar: Carried,
     /// Bodies other than the VH's touching its head at the last step.
     head_touch: Vec<BodyId>,
     last: Option<Sample>,
@@ -164,6 +167,7 @@ impl Sim {
         }
         let mut rng = Streams::new(model.seed);
         let lower = LowerBody::new(&model.params.body);
+        let avatar = Carried::new(&model.params.body.standing());
         Sim {
             face_state: FaceState::default(),
             oculomotor: Oculomotor::new(&model.params.oculomotor, &mut rng.oculomotor),
@@ -186,6 +190,7 @@ impl Sim {
             blows,
             neck: NeckState::default(),
             lower,
+            avatar,
             head_touch: Vec::new(),
             last: None,
         }
@@ -276,6 +281,7 @@ impl Sim {
         let gaze = self.move_gaze(choice, t);
         self.animate_face(&gaze);
         self.plan_arms(t);
+        self.carry_avatar(t);
         let reset = self.actuate_and_integrate();
         let blows = self.resolve_contacts();
         self.record(&gaze, reset, blows)
@@ -489,6 +495,27 @@ impl Sim {
             .set_root_pose(offset.as_vec3(), rotation.as_quat());
         self.behaviour.set_trunk(offset, rotation);
         (offset, rotation)
+    }
+
+    /// Your avatar's body: its legs step and its waist bends under its
+    /// head, wherever the input or the script puts the head.
+    fn carry_avatar(&mut self, t: f64) {
+        let head = self
+            .world
+            .position(self.world.part(OpponentPart::Head))
+            .as_dvec3();
+        let local = self.avatar_frame().inverse().transform_point3(head);
+        let p = self.model.params.body.standing();
+        self.avatar
+            .step(&p, local, t + self.model.dt, self.model.dt);
+    }
+
+    /// Your avatar's frame: its own frame (facing +Z, as the VH's) turned
+    /// to face the VH and put on the ground under its rest head.
+    pub fn avatar_frame(&self) -> glam::DAffine3 {
+        let h = self.world.plan.opponent_head.as_dvec3();
+        glam::DAffine3::from_translation(DVec3::new(h.x, 0.0, h.z))
+            * glam::DAffine3::from_rotation_y(std::f64::consts::PI)
     }
 
     /// Arms: inverse kinematics of the planned glove positions, in the
