@@ -10,6 +10,8 @@ vision + attention + behaviour + oculomotor + PD control + face). Both are
 timed here, one after the other, on this machine.
 
 Usage:  pip install mujoco && python3 benches/mujoco_compare.py [seconds]
+        SHISEN_BIN=/path/to/shisen python3 benches/mujoco_compare.py
+        (another build of shisen, e.g. a before-and-after pair; not rebuilt)
 """
 
 import math
@@ -24,7 +26,7 @@ import mujoco
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SIM_SECONDS = float(sys.argv[1]) if len(sys.argv) > 1 else 20.0
-BIN = os.path.join(ROOT, "target", "release", "shisen")
+BIN = os.environ.get("SHISEN_BIN") or os.path.join(ROOT, "target", "release", "shisen")
 
 
 def build():
@@ -62,7 +64,8 @@ def shisen_rate():
 
 
 def main():
-    build()
+    if "SHISEN_BIN" not in os.environ:
+        build()
     with tempfile.TemporaryDirectory() as tmp:
         xml = os.path.join(tmp, "shisen.xml")
         subprocess.run([BIN, "export-mjcf", "--out", xml], check=True)
