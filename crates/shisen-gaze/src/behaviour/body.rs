@@ -214,3 +214,78 @@ pub fn choose_evasion(
     };
     Some((e, right))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+    use rand::rngs::StdRng;
+
+    const HEAD: DVec3 = DVec3::new(0.0, 1.685, 0.0);
+    const OPPONENT: DVec3 = DVec3::new(0.0, 1.685, 1.3);
+
+    fn glove(at: DVec3, toward: DVec3, speed: f64) -> Seen {
+        Seen {
+            position: at,
+            velocity: (toward - at).normalize() * speed,
+            ..Seen::test_default()
+        }
+    }
+
+    fn choose(pers: &Personality, g: &Seen, seed: u64) -> Option<(Evasion, bool)> {
+        choose_evasion(pers, g, HEAD, Some(OPPONENT), &mut StdRng::seed_from_u64(seed))
+    }
+
+    #[test]
+    fn evasions_follow_the_punch_seen() {
+        let always = Personality {
+            evade: 1.0,
+            ..Personality::default()
+        };
+        // A jab from the opponent's left glove (on the VH's right, -X):
+        // slipped to that side, or leant away from.
+        let jab = glove(DVec3::new(-0.13, 1.55, 1.05), HEAD, 2.0);
+        let mut kinds = Vec::new();
+        for seed in 0..40 {
+            let (e, right) = choose(&always, &jab, seed).expect("evaded");
+            assert!(right, "outside the jab: the VH's right");
+            kinds.push(e);
+        }
+        let slips = kinds.iter().filter(|&&e| e == Evasion::Slip).count();
+        assert!((20..40).contains(&slips), "mostly slips: {slips} of 40");
+        assert!(kinds.iter().all(|&e| e != Evasion::Duck), "a straight punch is not ducked");
+        // A wide punch (a hook) is ducked.
+        let hook = glove(DVec3::new(0.55, 1.62, 1.05), HEAD, 2.0);
+        assert_eq!(choose(&always, &hook, 1).map(|c| c.0), Some(Evasion::Duck));
+        // A punch at the body is not evaded by moving the head.
+        let body = glove(DVec3::new(-0.13, 1.55, 1.05), DVec3::new(0.0, 1.25, 0.0), 2.0);
+        assert_eq!(choose(&always, &body, 1), None);
+        // A boxer that never evades covers up.
+        let never = Personality {
+            evade: 0.0,
+            ..Personality::default()
+        };
+        assert_eq!(choose(&never, &jab, 1), None);
+    }
+
+    #[test]
+    fn footwork_steps_back_as_the_opponent_comes_in_and_holds_still_in_range() {
+        let p = BehaviourParams::default();
+        let head = |z: f64, vz: f64| Seen {
+            position: DVec3::new(0.0, 1.685, z),
+            velocity: DVec3::new(0.0, 0.0, vz),
+            ..Seen::test_default()
+        };
+        let mut plan = BodyPlan::default();
+        plan.keep_range(&p, Some(&head(p.range, 0.0)), 0.0);
+        assert_eq!(plan.steps, 0, "in range: no step");
+        // Coming in at 0.4 m/s, not yet out of range: it steps already.
+        plan.keep_range(&p, Some(&head(p.range - 0.05, -0.4)), 0.0);
+        assert_eq!(plan.steps, 1);
+        let end = plan.posture(10.0).pelvis;
+        assert!(end.z < -0.1 && end.z >= -p.max_step, "stepped back: {end}");
+        // No second step while one is under way.
+        plan.keep_range(&p, Some(&head(0.5, -0.4)), 0.1);
+        assert_eq!(plan.steps, 1);
+    }
+}
