@@ -51,6 +51,8 @@ pub struct Posture {
     pub waist: DVec3,
     /// Knee dip, m.
     pub crouch: f64,
+    /// The body's heading (turn about +Y from facing +Z), rad.
+    pub facing: f64,
 }
 
 /// The body's plan: minimum-jerk paths for the pelvis, the waist and the
@@ -58,6 +60,7 @@ pub struct Posture {
 #[derive(Clone, Debug, Default)]
 pub(super) struct BodyPlan {
     step: Option<Reach>,
+    turn: Option<Reach>,
     bend: Option<Reach>,
     dip: Option<Reach>,
     /// The trunk as it is: the waist joint's offset from rest and the
@@ -78,6 +81,7 @@ impl BodyPlan {
             pelvis: at(&self.step, t),
             waist: at(&self.bend, t),
             crouch: at(&self.dip, t).y,
+            facing: at(&self.turn, t).x,
         }
     }
 
@@ -162,6 +166,20 @@ impl BodyPlan {
         // at the opponent's present closing speed.
         let opening = head.velocity.dot(to / range);
         let off = range - p.range + opening * (p.guard_reaction + p.step_time);
+        // Turn to face the opponent as it circles (the feet step round).
+        let bearing = to.x.atan2(to.z);
+        let facing = at(&self.turn, t).x;
+        if (bearing - facing).abs() > p.turn_tolerance_deg.to_radians()
+            && self.turn.as_ref().is_none_or(|r| r.done(t))
+        {
+            self.turn = Some(Reach {
+                from: DVec3::new(facing, 0.0, 0.0),
+                to: DVec3::new(bearing, 0.0, 0.0),
+                t0: t + p.guard_reaction,
+                dur: p.step_time,
+                back: false,
+            });
+        }
         if off.abs() <= p.range_tolerance {
             return;
         }
@@ -233,7 +251,13 @@ mod tests {
     }
 
     fn choose(pers: &Personality, g: &Seen, seed: u64) -> Option<(Evasion, bool)> {
-        choose_evasion(pers, g, HEAD, Some(OPPONENT), &mut StdRng::seed_from_u64(seed))
+        choose_evasion(
+            pers,
+            g,
+            HEAD,
+            Some(OPPONENT),
+            &mut StdRng::seed_from_u64(seed),
+        )
     }
 
     #[test]
@@ -253,12 +277,19 @@ mod tests {
         }
         let slips = kinds.iter().filter(|&&e| e == Evasion::Slip).count();
         assert!((20..40).contains(&slips), "mostly slips: {slips} of 40");
-        assert!(kinds.iter().all(|&e| e != Evasion::Duck), "a straight punch is not ducked");
+        assert!(
+            kinds.iter().all(|&e| e != Evasion::Duck),
+            "a straight punch is not ducked"
+        );
         // A wide punch (a hook) is ducked.
         let hook = glove(DVec3::new(0.55, 1.62, 1.05), HEAD, 2.0);
         assert_eq!(choose(&always, &hook, 1).map(|c| c.0), Some(Evasion::Duck));
         // A punch at the body is not evaded by moving the head.
-        let body = glove(DVec3::new(-0.13, 1.55, 1.05), DVec3::new(0.0, 1.25, 0.0), 2.0);
+        let body = glove(
+            DVec3::new(-0.13, 1.55, 1.05),
+            DVec3::new(0.0, 1.25, 0.0),
+            2.0,
+        );
         assert_eq!(choose(&always, &body, 1), None);
         // A boxer that never evades covers up.
         let never = Personality {

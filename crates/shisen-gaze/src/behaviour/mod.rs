@@ -145,6 +145,13 @@ pub struct BehaviourParams {
     /// Longest footwork step of the pelvis, m. Default 0.3.
     #[serde(default = "default_max_step", deserialize_with = "step_len")]
     pub max_step: f64,
+    /// The VH turns to face the opponent when its bearing is more than
+    /// this off the body's heading, deg (the feet step round). Default 15.
+    #[serde(
+        default = "default_turn_tolerance",
+        deserialize_with = "turn_tolerance"
+    )]
+    pub turn_tolerance_deg: f64,
     /// Duration of one footwork step of the pelvis, s. Default 0.4.
     #[serde(default = "default_step_time", deserialize_with = "move_time")]
     pub step_time: f64,
@@ -157,6 +164,11 @@ crate::ranged_fields! {
     tolerance: 0.0, 1.0;
     step_len: 0.0, 1.0;
     speed: 0.1, 20.0;
+    turn_tolerance: 1.0, 90.0;
+}
+
+fn default_turn_tolerance() -> f64 {
+    15.0
 }
 
 fn default_evade_speed() -> f64 {
@@ -217,6 +229,7 @@ impl Default for BehaviourParams {
             range: default_range(),
             range_tolerance: default_tolerance(),
             max_step: default_max_step(),
+            turn_tolerance_deg: default_turn_tolerance(),
             step_time: default_step_time(),
         }
     }

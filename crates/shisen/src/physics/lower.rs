@@ -195,6 +195,9 @@ pub struct BodyCommand {
     pub waist: [DVec3; 3],
     /// How far the knees lower the hips, m.
     pub crouch: f64,
+    /// The body's heading: its turn about +Y from facing +Z, rad (the
+    /// pelvis, the stance and the trunk turn with it; the feet step round).
+    pub facing: f64,
 }
 
 /// One foot: planted where it is, or swinging.
@@ -233,6 +236,7 @@ pub struct LowerBody {
     /// Ground point under the waist joint, world.
     pelvis: DVec3,
     crouch: f64,
+    facing: f64,
     feet: [Foot; 2],
     /// Waist angles from neutral (yaw, pitch, roll), rad, and rates.
     q: DVec3,
@@ -256,8 +260,9 @@ impl LowerBody {
         LowerBody {
             pelvis,
             crouch: 0.0,
+            facing: 0.0,
             feet: [0, 1].map(|k| Foot {
-                at: pelvis + place(p, k),
+                at: pelvis + place(p, k, 0.0),
                 swing: None,
             }),
             q: DVec3::ZERO,
@@ -275,6 +280,7 @@ impl LowerBody {
         }
         self.pelvis = DVec3::new(cmd.pelvis.x, 0.0, cmd.pelvis.z);
         self.crouch = cmd.crouch;
+        self.facing = cmd.facing;
         let w = std::f64::consts::TAU * p.waist_frequency;
         for i in 0..3 {
             let inertia = anthro::WAIST_INERTIA[i];
@@ -299,7 +305,8 @@ impl LowerBody {
             let legs = self.legs(p);
             let far = [0, 1]
                 .map(|k| {
-                    let off = (self.pelvis + place(p, k) - self.feet[k].at).length();
+                    let at = self.pelvis + place(p, k, self.facing);
+                    let off = (at - self.feet[k].at).length();
                     let stretched = legs[k].heel.y > HEEL_STEP;
                     (k, if stretched { f64::MAX } else { off })
                 })
@@ -307,7 +314,7 @@ impl LowerBody {
                 .filter(|&(_, d)| d > p.step_trigger)
                 .max_by(|a, b| a.1.total_cmp(&b.1));
             if let Some((k, _)) = far {
-                let to = ahead + place(p, k);
+                let to = ahead + place(p, k, self.facing);
                 self.feet[k].swing = Some(Swing {
                     from: self.feet[k].at,
                     to,
@@ -344,16 +351,20 @@ impl LowerBody {
             - DVec3::new(WAIST_REST.x, 0.0, WAIST_REST.z)
     }
 
-    /// The trunk's rotation in the world (the pelvis's turn and the
-    /// waist's on it; square to +Z at rest).
+    /// The trunk's rotation in the world (the body's heading, and the
+    /// waist's turn and bend; square to +Z at rest).
     pub fn trunk_rotation(&self) -> DQuat {
-        JointAngles {
+        let waist = JointAngles {
             yaw: self.q.x,
             pitch: self.q.y,
             roll: self.q.z,
-        }
-        .to_quat()
-        .as_dquat()
+        };
+        DQuat::from_rotation_y(self.facing) * waist.to_quat().as_dquat()
+    }
+
+    /// The body's heading (turn about +Y from facing +Z), rad.
+    pub fn facing(&self) -> f64 {
+        self.facing
     }
 
     /// The ground point under the waist joint, world.
@@ -373,13 +384,13 @@ impl LowerBody {
 
     /// The legs' joint centres (W3), left then right.
     pub fn legs(&self, p: &BodyParams) -> [Leg; 2] {
-        let turn = DQuat::from_rotation_y(p.hip_turn_deg.to_radians());
+        let turn = DQuat::from_rotation_y(p.hip_turn_deg.to_radians() + self.facing);
         let waist = WAIST_REST + self.waist_offset();
         [0, 1].map(|k| {
             let sx = if k == 0 { 1.0 } else { -1.0 };
             let hip =
                 waist + turn * DVec3::new(sx * anthro::HIP_HALF, -anthro::HIP_BELOW_WAIST, 0.0);
-            leg_ik(hip, self.feet[k].at, foot_yaw(p, k), sx)
+            leg_ik(hip, self.feet[k].at, foot_yaw(p, k) + self.facing, sx)
         })
     }
 }
@@ -425,6 +436,7 @@ impl Carried {
             pelvis_velocity: v,
             waist: [DVec3::ZERO; 3],
             crouch: (WAIST_REST.y - waist_y).clamp(0.0, 0.3),
+            facing: 0.0,
         };
         self.lower.step(p, &cmd, t, dt);
         // The trunk from the waist joint to the head, exactly.
@@ -437,10 +449,11 @@ impl Carried {
     }
 }
 
-/// Foot `k`'s place relative to the pelvis (the stance).
-fn place(p: &BodyParams, k: usize) -> DVec3 {
+/// Foot `k`'s place relative to the pelvis (the stance), the body facing
+/// `facing`.
+fn place(p: &BodyParams, k: usize, facing: f64) -> DVec3 {
     let [x, z] = p.lead_foot;
-    let turn = DQuat::from_rotation_y(p.hip_turn_deg.to_radians());
+    let turn = DQuat::from_rotation_y(p.hip_turn_deg.to_radians() + facing);
     let v = if k == 0 {
         DVec3::new(x, 0.0, z)
     } else {

@@ -487,6 +487,7 @@ impl Sim {
                 (after.waist - 2.0 * now.waist + before.waist) / (dt * dt),
             ],
             crouch: now.crouch,
+            facing: now.facing,
         };
         self.lower.step(p, &cmd, t + dt, dt);
         let offset = self.lower.waist_offset() + DVec3::Y * lunge.y;
@@ -694,6 +695,7 @@ impl Sim {
             head: w.position(Seg::Head).as_dvec3(),
             pelvis: self.lower.pelvis(),
             waist: self.lower.waist(&self.model.params.body),
+            heading: self.lower.facing(),
             range: {
                 let d = w.position(w.part(OpponentPart::Head)).as_dvec3() - self.lower.pelvis();
                 d.x.hypot(d.z)

@@ -53,6 +53,8 @@ pub struct Sample {
     /// The fighting range: horizontal distance from the pelvis to the
     /// opponent's head, m.
     pub range: f64,
+    /// The VH's heading (its body's turn about +Y from facing +Z), rad.
+    pub heading: f64,
     /// Top saliency scores (body name, score), highest first.
     pub top_saliency: Vec<(String, f64)>,
     /// True if every body state is finite.

@@ -94,6 +94,7 @@ pub const COLUMNS: &[(&str, Cell)] = &[
     ("pelvis_x", num(|s| s.pelvis.x)),
     ("pelvis_z", num(|s| s.pelvis.z)),
     ("range", num(|s| s.range)),
+    ("heading", num(|s| deg(s.heading))),
     ("waist_yaw", num(|s| deg(s.waist.yaw))),
     ("waist_pitch", num(|s| deg(s.waist.pitch))),
     ("waist_roll", num(|s| deg(s.waist.roll))),
