@@ -319,6 +319,10 @@ pub fn soak_cmd(minutes: f64, seed: u64, force: bool) -> Result<bool> {
         "  {} opponent events, {} VH punches, {} head-contact ticks, {} physics resets",
         r.events, r.vh_punches, r.head_hit_ticks, r.resets
     );
+    println!(
+        "  the VH's body: {} evasions, {} footwork moves, {} foot steps",
+        r.evasions, r.steps.0, r.steps.1
+    );
     let t = &r.tally;
     println!(
         "  blows: the opponent landed {} hits ({} blocked, {} punches stopped dead by the VH's guard), the VH {} ({} blocked)",

@@ -174,6 +174,10 @@ pub struct SoakReport {
     pub events: u64,
     /// Punches the VH threw.
     pub vh_punches: u32,
+    /// Evasions (slips, ducks, lean-backs) the VH started.
+    pub evasions: u32,
+    /// Footwork moves the VH started, and steps its feet took.
+    pub steps: (u32, u32),
     /// Ticks an opponent glove touched the VH's head.
     pub head_hit_ticks: u64,
     /// Physics explosions recovered from.
@@ -297,6 +301,8 @@ pub fn soak(minutes: f64, seed: u64, mut progress: impl FnMut(f64) -> bool) -> S
     r.ticks = (sim.time() / DT).round() as u64;
     r.events = bot.events;
     r.vh_punches = sim.behaviour.punches_thrown;
+    r.evasions = sim.behaviour.evasions;
+    r.steps = (sim.behaviour.footwork_steps(), sim.lower.steps);
     r.resets = sim.resets;
     r.tally = sim.tally();
     r
