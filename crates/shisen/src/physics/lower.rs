@@ -308,7 +308,11 @@ impl LowerBody {
                     let at = self.pelvis + place(p, k, self.facing);
                     let off = (at - self.feet[k].at).length();
                     let stretched = legs[k].heel.y > HEEL_STEP;
-                    (k, if stretched { f64::MAX } else { off })
+                    // Of two feet as far off, the one on the side the body
+                    // travels to steps first (the lead foot going in, the
+                    // rear foot going back), as boxers are taught.
+                    let lead = 0.01 * place(p, k, self.facing).dot(at - self.feet[k].at);
+                    (k, if stretched { f64::MAX } else { off + lead })
                 })
                 .into_iter()
                 .filter(|&(_, d)| d > p.step_trigger)
@@ -572,6 +576,27 @@ mod tests {
             assert!(
                 (moved.z + 0.4).abs() < p.step_trigger,
                 "foot {k} followed: {moved}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_foot_on_the_side_of_travel_steps_first() {
+        let p = BodyParams::default();
+        for (dz, first) in [(-0.3, 1), (0.3, 0)] {
+            let mut lb = LowerBody::new(&p);
+            let cmd = |t: f64| BodyCommand {
+                pelvis: DVec3::new(0.0, 0.0, dz * min_jerk(t / 0.4)),
+                ..Default::default()
+            };
+            let mut t = 0.0;
+            while lb.planted(0) && lb.planted(1) && t < 1.0 {
+                lb.step(&p, &cmd(t), t, 1e-3);
+                t += 1e-3;
+            }
+            assert!(
+                !lb.planted(first) && lb.planted(1 - first),
+                "{dz}: foot {first} first"
             );
         }
     }
