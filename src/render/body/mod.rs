@@ -672,7 +672,8 @@ mod tests {
         let mut body = Carried::new(&p);
         let local = frame.inverse().transform_point3(head).as_dvec3();
         for i in 0..1000 {
-            body.step(&p, local, f64::from(i) * 1e-3, 1e-3);
+            let vh = glam::DVec3::new(0.0, 1.685, 0.92);
+            body.step(&p, local, vh, f64::from(i) * 1e-3, 1e-3);
         }
         let more = [Vec3::new(-0.05, 1.6, 0.45), Vec3::new(0.2, 1.45, 0.7)];
         for gloves in [plan.opponent_gloves, more] {

@@ -425,8 +425,9 @@ impl Carried {
         }
     }
 
-    /// Advance one tick with the head's centre at `head` (own frame).
-    pub fn step(&mut self, p: &BodyParams, head: DVec3, t: f64, dt: f64) {
+    /// Advance one tick with the head's centre at `head`, the body turned
+    /// to face `toward` (both in its own frame).
+    pub fn step(&mut self, p: &BodyParams, head: DVec3, toward: DVec3, t: f64, dt: f64) {
         let ground = DVec3::new(head.x, 0.0, head.z);
         // The pelvis follows over about a step's time.
         let k = (dt / 0.3).min(1.0);
@@ -440,13 +441,14 @@ impl Carried {
             pelvis_velocity: v,
             waist: [DVec3::ZERO; 3],
             crouch: (WAIST_REST.y - waist_y).clamp(0.0, 0.3),
-            facing: 0.0,
+            facing: (toward.x - self.pelvis.x).atan2(toward.z - self.pelvis.z),
         };
         self.lower.step(p, &cmd, t, dt);
         // The trunk from the waist joint to the head, exactly.
         let waist = WAIST_REST + self.lower.waist_offset();
         let dir = (head - waist).normalize_or(DVec3::Y);
-        let q = DQuat::from_rotation_arc(DVec3::Y, dir);
+        let q =
+            DQuat::from_rotation_arc(DVec3::Y, DQuat::from_rotation_y(-self.lower.facing) * dir);
         let a = JointAngles::from_quat(q.as_quat());
         self.lower.q = DVec3::new(a.yaw, a.pitch, a.roll);
         self.lower.qd = DVec3::ZERO;

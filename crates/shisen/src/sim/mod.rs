@@ -501,14 +501,17 @@ impl Sim {
     /// Your avatar's body: its legs step and its waist bends under its
     /// head, wherever the input or the script puts the head.
     fn carry_avatar(&mut self, t: f64) {
-        let head = self
-            .world
-            .position(self.world.part(OpponentPart::Head))
-            .as_dvec3();
-        let local = self.avatar_frame().inverse().transform_point3(head);
+        let to_local = self.avatar_frame().inverse();
+        let w = &self.world;
+        let head = w.position(w.part(OpponentPart::Head)).as_dvec3();
+        let vh = w.position(Seg::Head).as_dvec3();
+        let (head, vh) = (
+            to_local.transform_point3(head),
+            to_local.transform_point3(vh),
+        );
         let p = self.model.params.body.standing();
         self.avatar
-            .step(&p, local, t + self.model.dt, self.model.dt);
+            .step(&p, head, vh, t + self.model.dt, self.model.dt);
     }
 
     /// Your avatar's frame: its own frame (facing +Z, as the VH's) turned
