@@ -68,6 +68,10 @@ pub(super) struct BodyPlan {
     pub trunk: (DVec3, DQuat),
     /// Footwork moves started.
     pub steps: u32,
+    /// Since when the feet have been still (for circling), s.
+    still_since: f64,
+    /// The side the last circling step went to (+1 the VH's left).
+    circled: f64,
 }
 
 fn at(r: &Option<Reach>, t: f64) -> DVec3 {
@@ -181,6 +185,7 @@ impl BodyPlan {
             });
         }
         if off.abs() <= p.range_tolerance {
+            self.circle(p, pelvis, head.position, t);
             return;
         }
         let by = off.clamp(-p.max_step, p.max_step);
@@ -192,6 +197,31 @@ impl BodyPlan {
             back: false,
         });
         self.steps += 1;
+        self.still_since = t + p.guard_reaction + p.step_time;
+    }
+
+    /// Circling: once the feet have been still `circle_after` seconds in
+    /// range, a step of `max_step` round the opponent, to alternate sides
+    /// (the turn to face follows).
+    fn circle(&mut self, p: &BehaviourParams, pelvis: DVec3, opponent: DVec3, t: f64) {
+        let Some(after) = p.circle_after else { return };
+        if t < self.still_since + after {
+            return;
+        }
+        let centre = DVec3::new(opponent.x, 0.0, opponent.z);
+        let arm = pelvis - centre;
+        let r = arm.length().max(1e-6);
+        self.circled = if self.circled > 0.0 { -1.0 } else { 1.0 };
+        let turn = DQuat::from_rotation_y(self.circled * p.max_step / r);
+        self.step = Some(Reach {
+            from: pelvis,
+            to: centre + turn * arm,
+            t0: t,
+            dur: p.step_time,
+            back: false,
+        });
+        self.steps += 1;
+        self.still_since = t + p.step_time;
     }
 }
 

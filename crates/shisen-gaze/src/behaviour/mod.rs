@@ -145,6 +145,11 @@ pub struct BehaviourParams {
     /// Longest footwork step of the pelvis, m. Default 0.3.
     #[serde(default = "default_max_step", deserialize_with = "step_len")]
     pub max_step: f64,
+    /// Circle the opponent: once the feet have been still this long in
+    /// range, the VH steps round it (alternating sides), s; `None` (the
+    /// default) never. The default sparring scene circles every 3 s.
+    #[serde(default, deserialize_with = "crate::util::check::opt_positive")]
+    pub circle_after: Option<f64>,
     /// The VH turns to face the opponent when its bearing is more than
     /// this off the body's heading, deg (the feet step round). Default 15.
     #[serde(
@@ -230,6 +235,7 @@ impl Default for BehaviourParams {
             range_tolerance: default_tolerance(),
             max_step: default_max_step(),
             turn_tolerance_deg: default_turn_tolerance(),
+            circle_after: None,
             step_time: default_step_time(),
         }
     }
