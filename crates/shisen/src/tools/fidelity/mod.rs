@@ -143,14 +143,16 @@ fn median(v: &mut [f64]) -> f64 {
     v[v.len() / 2]
 }
 
-/// The model the battery runs: the scene's parameters, the VH not
-/// attacking (the experiments script the opponent's side), `profile` on top.
+/// The model the battery runs: the scene's parameters, the VH neither
+/// attacking nor circling (the experiments script the opponent's side and
+/// measure from where the VH stands), `profile` on top.
 pub fn model_of(scene: &LoadedScene, profile: Option<Profile>) -> Model {
     let mut m = scene.model();
     if let Some(p) = profile {
         m.apply_profile(p);
     }
     m.params.behaviour.attacks = false;
+    m.params.behaviour.circle_after = None;
     m
 }
 
