@@ -320,8 +320,8 @@ pub fn soak_cmd(minutes: f64, seed: u64, force: bool) -> Result<bool> {
         r.events, r.vh_punches, r.head_hit_ticks, r.resets
     );
     println!(
-        "  the VH's body: {} evasions, {} footwork moves, {} foot steps",
-        r.evasions, r.steps.0, r.steps.1
+        "  the VH's body: {} evasions, {} footwork moves, {} foot steps; its pelvis at most {:.2} m from where it started",
+        r.evasions, r.steps.0, r.steps.1, r.farthest
     );
     let t = &r.tally;
     println!(

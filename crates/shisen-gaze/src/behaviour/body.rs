@@ -201,8 +201,9 @@ impl BodyPlan {
     }
 
     /// Circling: once the feet have been still `circle_after` seconds in
-    /// range, a step of `max_step` round the opponent, to alternate sides
-    /// (the turn to face follows).
+    /// range, a step of `max_step` round the opponent, to alternate sides,
+    /// kept within about a step of square to it (the turn to face
+    /// follows).
     fn circle(&mut self, p: &BehaviourParams, pelvis: DVec3, opponent: DVec3, t: f64) {
         let Some(after) = p.circle_after else { return };
         if t < self.still_since + after {
@@ -211,7 +212,17 @@ impl BodyPlan {
         let centre = DVec3::new(opponent.x, 0.0, opponent.z);
         let arm = pelvis - centre;
         let r = arm.length().max(1e-6);
-        self.circled = if self.circled > 0.0 { -1.0 } else { 1.0 };
+        // Alternate sides while square to the opponent; once round to one
+        // side, back toward square (a circle that wanders round the
+        // opponent would leave it facing empty canvas).
+        let facing = at(&self.turn, t).x;
+        self.circled = if facing.abs() > 0.15 {
+            -facing.signum()
+        } else if self.circled > 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
         let turn = DQuat::from_rotation_y(self.circled * p.max_step / r);
         self.step = Some(Reach {
             from: pelvis,

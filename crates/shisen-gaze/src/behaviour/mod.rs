@@ -591,7 +591,7 @@ impl Behaviour {
                 if !thrown && t >= punch_at {
                     match self.punch_reach(hand, &target, view, t, p) {
                         Some(r) => {
-                            self.lunge = Self::lunge_for(hand, r.to, t, p);
+                            self.lunge = self.lunge_for(hand, r.to, t, p);
                             self.body.punch(hand, t, p.punch_time);
                             self.reaches[hand] = Some(r);
                             self.punches_thrown += 1;
@@ -702,9 +702,10 @@ impl Behaviour {
     /// The lunge a punch at `to` with glove `hand` needs: the part of the
     /// shoulder-to-target distance beyond the straight arm (less 5 %),
     /// horizontally toward the target, at most `max_lunge`.
-    fn lunge_for(hand: usize, to: DVec3, t: f64, p: &BehaviourParams) -> Option<Reach> {
+    fn lunge_for(&self, hand: usize, to: DVec3, t: f64, p: &BehaviourParams) -> Option<Reach> {
         use crate::anatomy::arm;
-        let shoulder = DVec3::from_array(arm::shoulder(hand));
+        // Where the shoulder is now: the body may have stepped and turned.
+        let shoulder = self.body.on_trunk(DVec3::from_array(arm::shoulder(hand)));
         let reach = 0.95 * (arm::UPPER + arm::FOREARM);
         let len = ((to - shoulder).length() - reach).clamp(0.0, p.max_lunge);
         let dir = DVec3::new(to.x - shoulder.x, 0.0, to.z - shoulder.z).normalize_or_zero();

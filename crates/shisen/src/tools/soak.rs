@@ -178,6 +178,8 @@ pub struct SoakReport {
     pub evasions: u32,
     /// Footwork moves the VH started, and steps its feet took.
     pub steps: (u32, u32),
+    /// Farthest the VH's pelvis got from where it started, m.
+    pub farthest: f64,
     /// Ticks an opponent glove touched the VH's head.
     pub head_hit_ticks: u64,
     /// Physics explosions recovered from.
@@ -278,6 +280,7 @@ pub fn soak(minutes: f64, seed: u64, mut progress: impl FnMut(f64) -> bool) -> S
         r.worst_limit_excess_deg = r.worst_limit_excess_deg.max(excess);
         r.worst_joint_gap_mm = r.worst_joint_gap_mm.max(gap_mm);
         r.head_hit_ticks += u64::from(s.head_hit);
+        r.farthest = r.farthest.max(s.pelvis.length());
         if i % 1000 == 0 {
             if !progress(i as f64 / ticks as f64) {
                 break;
