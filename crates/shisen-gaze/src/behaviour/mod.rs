@@ -113,11 +113,11 @@ pub struct BehaviourParams {
     pub max_lunge: f64,
     /// Time from seeing a punch to the waist starting an evasion, s.
     /// Default 0.13, the guard's: the same decision on the same sight.
-    #[serde(default = "default_reaction", deserialize_with = "reaction")]
+    #[serde(deserialize_with = "reaction")]
     pub evade_reaction: f64,
     /// Time to carry an evasion out (the minimum-jerk path of the waist and
     /// knees), s. Default 0.2.
-    #[serde(default = "default_evade_time", deserialize_with = "move_time")]
+    #[serde(deserialize_with = "move_time")]
     pub evade_time: f64,
     /// An opponent glove closing on the head faster than this, its path
     /// passing within 15 cm of the head, is a punch starting, m/s: the
@@ -125,25 +125,24 @@ pub struct BehaviourParams {
     /// punch from its first movement (Rosalie & Mueller 2013, Q. J. Exp.
     /// Psychol. 66:1951; Petri, Droste & Witte 2020, J. Martial Arts Res.
     /// 3(3): punches are mostly recognised in their first stages).
-    #[serde(default = "default_evade_speed", deserialize_with = "speed")]
+    #[serde(deserialize_with = "speed")]
     pub evade_speed: f64,
     /// How long an evasion is held once carried out, before recovering, s.
     /// Default 0.25: the punch has gone by.
-    #[serde(default = "default_evade_hold", deserialize_with = "move_time")]
+    #[serde(deserialize_with = "move_time")]
     pub evade_hold: f64,
     /// Whether the VH steps to hold its fighting range (footwork).
-    #[serde(default = "yes")]
     pub footwork: bool,
     /// Fighting range held by the footwork: horizontal distance from the
     /// waist joint to the opponent's head, m. Default 0.92, the distance
     /// the scenes start at (a jab's reach with a short step in).
-    #[serde(default = "default_range", deserialize_with = "range")]
+    #[serde(deserialize_with = "range")]
     pub range: f64,
     /// The range may drift this far before the VH steps, m. Default 0.1.
-    #[serde(default = "default_tolerance", deserialize_with = "tolerance")]
+    #[serde(deserialize_with = "tolerance")]
     pub range_tolerance: f64,
     /// Longest footwork step of the pelvis, m. Default 0.3.
-    #[serde(default = "default_max_step", deserialize_with = "step_len")]
+    #[serde(deserialize_with = "step_len")]
     pub max_step: f64,
     /// Circle the opponent: once the feet have been still this long in
     /// range, the VH steps round it (alternating sides), s; `None` (the
@@ -152,13 +151,10 @@ pub struct BehaviourParams {
     pub circle_after: Option<f64>,
     /// The VH turns to face the opponent when its bearing is more than
     /// this off the body's heading, deg (the feet step round). Default 15.
-    #[serde(
-        default = "default_turn_tolerance",
-        deserialize_with = "turn_tolerance"
-    )]
+    #[serde(deserialize_with = "turn_tolerance")]
     pub turn_tolerance_deg: f64,
     /// Duration of one footwork step of the pelvis, s. Default 0.4.
-    #[serde(default = "default_step_time", deserialize_with = "move_time")]
+    #[serde(deserialize_with = "move_time")]
     pub step_time: f64,
 }
 
@@ -170,39 +166,6 @@ crate::ranged_fields! {
     step_len: 0.0, 1.0;
     speed: 0.1, 20.0;
     turn_tolerance: 1.0, 90.0;
-}
-
-fn default_turn_tolerance() -> f64 {
-    15.0
-}
-
-fn default_evade_speed() -> f64 {
-    0.6
-}
-fn default_evade_hold() -> f64 {
-    0.25
-}
-
-fn yes() -> bool {
-    true
-}
-fn default_reaction() -> f64 {
-    0.13
-}
-fn default_evade_time() -> f64 {
-    0.15
-}
-fn default_range() -> f64 {
-    0.92
-}
-fn default_tolerance() -> f64 {
-    0.1
-}
-fn default_max_step() -> f64 {
-    0.3
-}
-fn default_step_time() -> f64 {
-    0.4
 }
 
 fn default_max_lunge() -> f64 {
@@ -226,17 +189,17 @@ impl Default for BehaviourParams {
             guard_hold: 0.25,
             attacks: true,
             max_lunge: default_max_lunge(),
-            evade_reaction: default_reaction(),
-            evade_time: default_evade_time(),
-            evade_speed: default_evade_speed(),
-            evade_hold: default_evade_hold(),
+            evade_reaction: 0.13,
+            evade_time: 0.15,
+            evade_speed: 0.6,
+            evade_hold: 0.25,
             footwork: true,
-            range: default_range(),
-            range_tolerance: default_tolerance(),
-            max_step: default_max_step(),
-            turn_tolerance_deg: default_turn_tolerance(),
+            range: 0.92,
+            range_tolerance: 0.1,
+            max_step: 0.3,
+            turn_tolerance_deg: 15.0,
             circle_after: None,
-            step_time: default_step_time(),
+            step_time: 0.4,
         }
     }
 }
