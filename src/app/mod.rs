@@ -8,6 +8,8 @@
 //! time and `--screenshot FILE.png` saves egui's screenshot of the window
 //! first (failing if the picture is blank).
 
+pub mod bout;
+mod hud;
 mod panels;
 pub mod record;
 pub mod session;
@@ -26,6 +28,7 @@ use crate::input::{Bindings, Collector, Command};
 use crate::render::View;
 use shisen::scene::LoadedScene;
 
+use hud::{BoutUi, MenuAction};
 use panels::PanelState;
 use session::{SceneSource, Session};
 use view3d::Viewport;
@@ -49,6 +52,23 @@ pub struct AppOptions {
     pub orbit: bool,
     /// Overlays on at start (gaze rays, saliency labels).
     pub overlays: bool,
+    /// The VH as this opponent (skips the start menu).
+    pub opponent: Option<shisen::scene::opponent::Opponent>,
+    /// Rounds of the bout (else the scene's).
+    pub rounds: Option<u32>,
+    /// Length of a round, s (else the scene's).
+    pub round_length: Option<f64>,
+    /// Rest between rounds, s (else the scene's).
+    pub rest: Option<f64>,
+    /// Write the bout's statistics (JSON) here on closing.
+    pub stats: Option<PathBuf>,
+    /// Start with the round report open.
+    pub report: bool,
+    /// Start with the menu open whatever else is asked.
+    pub menu: bool,
+    /// Render the 3D view at this fraction of the window's resolution
+    /// (fixed; else chosen to hold 60 fps).
+    pub render_scale: Option<f32>,
 }
 
 /// What the screenshot came to (shared with egui's callback).
@@ -113,6 +133,9 @@ struct ShisenApp {
     started: Instant,
     last: Instant,
     frames: FrameClock,
+    bout_ui: BoutUi,
+    /// The report's PNG being taken: the path and egui's screenshot.
+    report_shot: Option<(PathBuf, Shot)>,
     shot: Option<Shot>,
     /// Set when the run must end with an error (blank screenshot).
     failure: Arc<Mutex<Option<String>>>,
@@ -129,8 +152,20 @@ pub fn run(opts: AppOptions) -> anyhow::Result<()> {
     let native = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("shisen 視線")
-            .with_inner_size([1280.0, 800.0]),
+            .with_inner_size([1280.0, 720.0]),
         renderer: eframe::Renderer::Wgpu,
+        // Two frames in flight, not one: the simulation and the scene's
+        // description for the next frame run while a software rasteriser
+        // still draws this one. No vsync: the view's render scale holds
+        // the frame rate, and a virtual display (Xvfb) has no refresh to
+        // wait for.
+        wgpu_options: eframe::egui_wgpu::WgpuConfiguration {
+            surface: eframe::egui_wgpu::SurfaceConfig {
+                present_mode: wgpu::PresentMode::AutoNoVsync,
+                desired_maximum_frame_latency: Some(2),
+            },
+            ..Default::default()
+        },
         ..Default::default()
     };
     let fail = failure.clone();
@@ -143,7 +178,24 @@ pub fn run(opts: AppOptions) -> anyhow::Result<()> {
                 panels.scene_path = p.display().to_string();
             }
             let show_panels = opts.panels || !opts.open.is_empty();
-            let session = Session::new(loaded, source);
+            let mut session = Session::new(loaded, source);
+            // The command line's opponent and bout over the scene's.
+            let mut bout = session.loaded.scene.bout;
+            if opts.rounds.is_some() || opts.round_length.is_some() || opts.rest.is_some() {
+                let b = bout.get_or_insert_with(Default::default);
+                b.rounds = opts.rounds.unwrap_or(b.rounds);
+                b.round = opts.round_length.unwrap_or(b.round);
+                b.rest = opts.rest.unwrap_or(b.rest);
+            }
+            let opponent = opts.opponent.or(session.loaded.scene.vh.opponent);
+            if opponent != session.loaded.scene.vh.opponent || bout != session.loaded.scene.bout {
+                session.restart_with(opponent, bout);
+            }
+            let mut bout_ui = BoutUi::new(opponent.unwrap_or_default(), bout);
+            bout_ui.report = opts.report.then_some(0);
+            if opts.menu || (opts.opponent.is_none() && opts.exit_after.is_none()) {
+                bout_ui.toggle_menu(&mut session);
+            }
             if !opts.open.is_empty() {
                 panels.open_sections(&opts.open, &session.sim.params().gains);
             }
@@ -158,6 +210,8 @@ pub fn run(opts: AppOptions) -> anyhow::Result<()> {
                 started: Instant::now(),
                 last: Instant::now(),
                 frames: FrameClock::default(),
+                bout_ui,
+                report_shot: None,
                 shot: None,
                 failure: fail,
             }))
@@ -191,7 +245,55 @@ impl ShisenApp {
                     s.start_recording();
                 }
             }
+            Command::Menu => self.bout_ui.toggle_menu(s),
+            Command::Report => self.bout_ui.toggle_report(s),
+            Command::Replay => s.toggle_replay(),
+            Command::DevFigures => self.bout_ui.dev = !self.bout_ui.dev,
             _ => {}
+        }
+    }
+
+    /// The report's PNG: asked for by its button, taken from egui's
+    /// screenshot of the window, cropped to the report.
+    fn report_png(&mut self, ctx: &egui::Context) {
+        if let Some(path) = self.bout_ui.report_png.take() {
+            let s: Shot = Arc::new(Mutex::new(None));
+            let sink = s.clone();
+            ctx.request_screenshot(move |img| {
+                *sink.lock().expect("not poisoned") = Some(img);
+            });
+            self.report_shot = Some((path, s));
+        }
+        let Some((path, shot)) = &self.report_shot else {
+            return;
+        };
+        let Some(img) = shot.lock().expect("not poisoned").take() else {
+            return;
+        };
+        let img = match self.bout_ui.report_rect {
+            Some(r) => img.region(&r, Some(ctx.pixels_per_point())),
+            None => (*img).clone(),
+        };
+        self.bout_ui.status = Some(match save_screenshot(&img, path) {
+            Ok(()) => format!("saved {}", path.display()),
+            Err(e) => format!("{e:#}"),
+        });
+        self.report_shot = None;
+    }
+
+    /// `--stats FILE`: the bout's statistics, per round and in total (JSON).
+    fn write_stats(&self) {
+        let Some(path) = &self.opts.stats else { return };
+        let stats = &self.session.sim.stats;
+        let json = serde_json::json!({
+            "opponent": self.session.loaded.scene.vh.opponent.map(|o| o.to_string()),
+            "time": self.session.sim.time(),
+            "rounds": stats.rounds,
+            "total": stats.total(),
+        });
+        let text = serde_json::to_string_pretty(&json).expect("plain data");
+        if let Err(e) = std::fs::write(path, text + "\n") {
+            tracing::error!(path = %path.display(), error = %e, "cannot write the statistics");
         }
     }
 
@@ -249,7 +351,14 @@ fn save_screenshot(img: &egui::ColorImage, path: &std::path::Path) -> anyhow::Re
     Ok(())
 }
 
+/// At most this much wall time a frame moves a playing replay, s.
+const MAX_REPLAY_STEP: f64 = 0.1;
+
 impl eframe::App for ShisenApp {
+    fn on_exit(&mut self) {
+        self.write_stats();
+    }
+
     fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
         let ctx = ui.ctx().clone();
         let Some(rs) = frame.wgpu_render_state() else {
@@ -265,6 +374,10 @@ impl eframe::App for ShisenApp {
                 View::First
             };
             let mut v = Viewport::new(rs, view);
+            if let Some(s) = self.opts.render_scale {
+                v.scale.value = s;
+                v.scale.auto = false;
+            }
             v.overlays.gaze_rays = self.opts.overlays;
             v.overlays.saliency_labels = self.opts.overlays;
             v
@@ -313,6 +426,9 @@ impl eframe::App for ShisenApp {
         self.last = now;
         let sim_started = Instant::now();
         self.session.advance(wall);
+        if let Some(r) = &mut self.session.replay {
+            r.advance(wall.min(MAX_REPLAY_STEP));
+        }
         let sim_ms = sim_started.elapsed().as_secs_f32() * 1e3;
 
         let Some(viewport) = self.viewport.as_mut() else {
@@ -322,10 +438,19 @@ impl eframe::App for ShisenApp {
             wall as f32 * 1e3,
             [sim_ms, viewport.build_ms, viewport.render_ms],
         );
+        viewport.scale.frame(wall as f32 * 1e3);
         let frames = self.frames.clone();
-        egui::Panel::top("hud").show(ui, |ui| {
-            panels::hud(ui, &self.session, self.pads.names().len(), &frames);
-        });
+        if self.bout_ui.dev {
+            egui::Panel::top("dev").show(ui, |ui| {
+                hud::dev_line(ui, &self.session, self.pads.names().len(), &frames);
+                ui.label(format!("view at {:.0} %", viewport.scale.value * 100.0));
+            });
+        }
+        if self.session.replay.is_some() {
+            egui::Panel::bottom("replay").show(ui, |ui| {
+                hud::replay_bar(ui, &mut self.session);
+            });
+        }
         if self.show_panels {
             egui::Panel::right("tuning")
                 .resizable(true)
@@ -337,7 +462,29 @@ impl eframe::App for ShisenApp {
         }
         egui::CentralPanel::default()
             .frame(egui::Frame::NONE)
-            .show(ui, |ui| viewport.draw(ui, &self.session));
+            .show(ui, |ui| {
+                let sim = self
+                    .session
+                    .replay
+                    .as_ref()
+                    .map_or(&self.session.sim, |r| &r.sim);
+                let rect = viewport.draw(ui, sim);
+                hud::scoreboard(ui, rect, &self.session);
+            });
+        if self.bout_ui.menu {
+            match hud::menu(&ctx, &mut self.bout_ui, &mut self.session) {
+                Some(MenuAction::Fight) => {
+                    self.session
+                        .restart_with(Some(self.bout_ui.opponent), self.bout_ui.bout);
+                    self.bout_ui.toggle_menu(&mut self.session);
+                    self.session.clock.paused = false;
+                }
+                Some(MenuAction::Quit) => ctx.send_viewport_cmd(egui::ViewportCommand::Close),
+                None => {}
+            }
+        }
+        hud::report(&ctx, &mut self.bout_ui, &self.session);
+        self.report_png(&ctx);
         self.ci_exit(&ctx);
         ctx.request_repaint();
     }

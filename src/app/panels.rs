@@ -6,7 +6,6 @@ use eframe::egui::{self, RichText};
 use egui_plot::{Legend, Line, Plot, PlotPoints};
 
 use shisen::physics::body::Group;
-use shisen::sim::blows::{BlowKind, Fighter};
 use shisen::sim::timeline::{Action, Event};
 use shisen_face::tables::{ActionUnit, Emotion};
 use shisen_face::timing::{Pattern, Speed};
@@ -72,66 +71,6 @@ impl PanelState {
         }
         self.status = Some((msg, error));
     }
-}
-
-/// The always-visible line: action, gaze, hits, clock.
-pub fn hud(ui: &mut egui::Ui, s: &Session, pads: usize, frames: &super::FrameClock) {
-    ui.horizontal_wrapped(|ui| {
-        let big = |t: String| RichText::new(t).size(16.0).strong();
-        match s.sim.last() {
-            Some(last) => {
-                ui.label(big(format!("VH: {:?}", last.action)));
-                ui.separator();
-                ui.label(big(format!(
-                    "looks at {} ({})",
-                    last.gaze_target,
-                    last.source.as_str()
-                )));
-            }
-            None => {
-                ui.label(big("VH: starting".into()));
-            }
-        }
-        ui.separator();
-        let tally = s.sim.tally();
-        ui.label(big(format!(
-            "hits landed {}  taken {}  blocked: yours {}, its {}",
-            tally.opponent_hits, tally.vh_hits, tally.opponent_blocked, tally.vh_blocked
-        )))
-        .on_hover_text(
-            "blows (contact impulse over 2 N s in 30 ms): your hits on the VH, its hits on \
-             you, your punches its guard stopped, its punches your guard stopped",
-        );
-        if let Some(lb) = s.last_blow.as_ref().filter(|lb| s.sim.time() - lb.t < 2.0) {
-            let b = &lb.blow;
-            let what = match (b.by, b.kind) {
-                (Fighter::Opponent, BlowKind::Hit) => format!("you hit its {}", b.part),
-                (Fighter::Opponent, BlowKind::Block) => format!("its {} blocked you", b.part),
-                (Fighter::Vh, BlowKind::Hit) => format!("it hit your {}", b.part),
-                (Fighter::Vh, BlowKind::Block) => format!("your {} blocked it", b.part),
-            };
-            ui.label(big(format!("{what}, {:.1} N s", b.impulse)));
-        }
-        ui.separator();
-        let mut clock = format!("t = {:.2} s", s.sim.time());
-        if s.clock.paused {
-            clock.push_str("  PAUSED");
-        } else if s.clock.slow {
-            clock.push_str("  slow motion");
-        }
-        ui.label(clock);
-        if let Some(r) = &s.recorder {
-            ui.label(RichText::new(format!("REC {} events", r.len())).color(egui::Color32::RED));
-        }
-        ui.separator();
-        ui.label(format!("reach {:.2} m  pads {pads}", s.control.reach));
-        ui.separator();
-        ui.label(frames.summary()).on_hover_text(
-            "wall time between frames, and the app's own CPU time in it: stepping the \
-             simulation, describing the scene, recording the render (the rest is egui \
-             and the driver)",
-        );
-    });
 }
 
 /// The tuning side panel.

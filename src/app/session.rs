@@ -15,7 +15,10 @@ use shisen::sim::timeline::Event;
 use shisen::sim::{DT, Sample, Sim};
 use shisen::tools::trace::TraceWriter;
 
+use super::bout::{BoutLog, Replay};
 use super::record::Recorder;
+use shisen::scene::opponent::Opponent;
+use shisen::sim::bout::BoutParams;
 
 /// At most this much simulation time is stepped per frame, s; a slow frame
 /// makes the simulation fall behind wall time instead of stalling the UI.
@@ -112,6 +115,12 @@ pub struct Session {
     pub history: VecDeque<Sample>,
     /// Recording in progress.
     pub recorder: Option<Recorder>,
+    /// The bout so far, for the round report.
+    pub log: BoutLog,
+    /// Your input since the start, for replays.
+    pub events: Vec<Event>,
+    /// A replay being watched (the live bout is paused meanwhile).
+    pub replay: Option<Replay>,
     trace: Option<(PathBuf, TraceWriter<BufWriter<File>>)>,
 }
 
@@ -128,8 +137,33 @@ impl Session {
             last_blow: None,
             history: VecDeque::new(),
             recorder: None,
+            log: BoutLog::default(),
+            events: Vec::new(),
+            replay: None,
             trace: None,
         }
+    }
+
+    /// Start again against `opponent` (`None`: the scene's own VH) in a
+    /// bout of `bout` (`None`: no rounds), keeping the gains.
+    pub fn restart_with(&mut self, opponent: Option<Opponent>, bout: Option<BoutParams>) {
+        self.loaded.scene.vh.opponent = opponent;
+        self.loaded.scene.bout = bout;
+        self.reset(false);
+    }
+
+    /// Watch the bout so far from its start (pausing it), or stop
+    /// watching.
+    pub fn toggle_replay(&mut self) {
+        if self.replay.take().is_some() {
+            return;
+        }
+        self.clock.paused = true;
+        self.replay = Some(Replay::new(
+            self.loaded.clone(),
+            self.events.clone(),
+            self.sim.time(),
+        ));
     }
 
     /// Start the scene again, keeping the tuning (gains, personality,
@@ -173,6 +207,7 @@ impl Session {
         if let Some(r) = &mut self.recorder {
             r.push(&ev);
         }
+        self.events.push(ev.clone());
         self.sim.push_event(ev);
     }
 
@@ -187,6 +222,7 @@ impl Session {
     pub fn step(&mut self) {
         let s = self.sim.step();
         let sample = s.clone();
+        self.log.push(&sample);
         if let Some(b) = sample.blows.last() {
             self.last_blow = Some(LastBlow {
                 t: sample.t,

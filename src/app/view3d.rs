@@ -11,6 +11,7 @@ use crate::input::Pointer;
 use crate::render::{Blit, BlitBind, Camera, Frame, Overlays, Renderer, View};
 
 use super::session::Session;
+use shisen::sim::Sim;
 
 /// The viewport's GPU side.
 pub struct Viewport {
@@ -30,13 +31,77 @@ pub struct Viewport {
     pub render_ms: f32,
     /// Where the view was drawn last frame, and its camera.
     last: Option<(egui::Rect, Camera)>,
+    /// The fraction of the window's pixels the view is rendered at.
+    pub scale: RenderScale,
+}
+
+/// Dynamic resolution: the 3D view is rendered at a fraction of the
+/// window's pixels (the blit scales it up, bilinear) chosen to hold the
+/// frame rate. A software rasteriser shades every pixel on the CPU, so
+/// the frame time follows the pixel count; the scale falls while frames
+/// take longer than [`RenderScale::SLOW_MS`] and rises back while they
+/// take less than [`RenderScale::FAST_MS`], between [`RenderScale::MIN`]
+/// and 1. On a GPU it stays at 1.
+#[derive(Clone, Copy, Debug)]
+pub struct RenderScale {
+    /// The fraction, per axis.
+    pub value: f32,
+    /// Adjusted to the frame time (else fixed).
+    pub auto: bool,
+    frames: u32,
+    sum_ms: f32,
+}
+
+impl RenderScale {
+    /// The lowest scale (a quarter of the pixels).
+    pub const MIN: f32 = 0.5;
+    /// Frames slower than this lower the scale, ms (60 fps).
+    pub const SLOW_MS: f32 = 16.7;
+    /// Frames faster than this raise it, ms.
+    pub const FAST_MS: f32 = 12.5;
+    /// Frames averaged per adjustment.
+    const EVERY: u32 = 15;
+
+    /// Start at `value`, adjusting.
+    pub fn new(value: f32) -> Self {
+        RenderScale {
+            value: value.clamp(Self::MIN, 1.0),
+            auto: true,
+            frames: 0,
+            sum_ms: 0.0,
+        }
+    }
+
+    /// Note a frame of `ms` milliseconds.
+    pub fn frame(&mut self, ms: f32) {
+        if !self.auto || !ms.is_finite() {
+            return;
+        }
+        self.frames += 1;
+        self.sum_ms += ms.min(200.0);
+        if self.frames < Self::EVERY {
+            return;
+        }
+        let avg = self.sum_ms / self.frames as f32;
+        self.frames = 0;
+        self.sum_ms = 0.0;
+        if avg > Self::SLOW_MS {
+            self.value = (self.value * 0.92).max(Self::MIN);
+        } else if avg < Self::FAST_MS {
+            self.value = (self.value * 1.04).min(1.0);
+        }
+    }
 }
 
 impl Viewport {
     /// A viewport on eframe's device.
     pub fn new(rs: &egui_wgpu::RenderState, view: View) -> Self {
+        let renderer = Renderer::for_window(&rs.adapter, &rs.device, &rs.queue);
+        // A software rasteriser starts below full resolution (about 60 fps
+        // at 1280x720 on two cores) and finds its level from there.
+        let scale = RenderScale::new(if renderer.software() { 0.7 } else { 1.0 });
         Viewport {
-            renderer: Renderer::for_window(&rs.adapter, &rs.device, &rs.queue),
+            renderer,
             blit: Blit::new(&rs.device, rs.target_format),
             view,
             overlays: Overlays::default(),
@@ -44,6 +109,7 @@ impl Viewport {
             build_ms: 0.0,
             render_ms: 0.0,
             last: None,
+            scale,
         }
     }
 
@@ -125,24 +191,25 @@ impl Viewport {
         (pointer, wheel)
     }
 
-    /// Draw the session into `ui`'s remaining space.
-    pub fn draw(&mut self, ui: &mut egui::Ui, session: &Session) {
+    /// Draw `sim` (the bout, or its replay) into `ui`'s remaining space;
+    /// returns where.
+    pub fn draw(&mut self, ui: &mut egui::Ui, sim: &Sim) -> egui::Rect {
         let rect = ui.available_rect_before_wrap();
-        let ppp = ui.ctx().pixels_per_point();
+        let ppp = ui.ctx().pixels_per_point() * self.scale.value;
         let px = (
             ((rect.width() * ppp).round() as u32).max(16),
             ((rect.height() * ppp).round() as u32).max(16),
         );
         let aspect = px.0 as f32 / px.1 as f32;
         let started = std::time::Instant::now();
-        let mut frame = Frame::build(&session.sim, self.view, self.overlays, aspect);
+        let mut frame = Frame::build(sim, self.view, self.overlays, aspect);
         if self.view == View::First {
-            frame.camera.knock(&session.sim, self.knock);
+            frame.camera.knock(sim, self.knock);
         }
         self.build_ms = started.elapsed().as_secs_f32() * 1e3;
         let started = std::time::Instant::now();
         self.renderer
-            .render(&frame, &session.sim.model().face.mesh.triangles, px);
+            .render(&frame, &sim.model().face.mesh.triangles, px);
         self.render_ms = started.elapsed().as_secs_f32() * 1e3;
         if let Some(bind) = self.blit.bind(&self.renderer) {
             ui.painter().add(egui_wgpu::Callback::new_paint_callback(
@@ -165,6 +232,7 @@ impl Viewport {
                 );
             }
         }
+        rect
     }
 }
 

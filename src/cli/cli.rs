@@ -41,6 +41,33 @@ pub struct Cli {
     /// Window: gaze rays and saliency labels on at start.
     #[arg(long)]
     pub overlays: bool,
+    /// Window: the VH as this opponent, `level` or `level-style` (novice,
+    /// amateur, pro; boxer, out-fighter, brawler, counter-puncher), e.g.
+    /// `pro-brawler`; skips the start menu.
+    #[arg(long, value_parser = parse_opponent)]
+    pub opponent: Option<shisen::scene::opponent::Opponent>,
+    /// Window: rounds of the bout (1-15; default the scene's, 3).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=15))]
+    pub rounds: Option<u32>,
+    /// Window: length of a round, seconds (5-600).
+    #[arg(long, value_parser = number_in(5.0, 600.0, " s"))]
+    pub round_length: Option<f64>,
+    /// Window: rest between rounds, seconds (0-300).
+    #[arg(long, value_parser = number_in(0.0, 300.0, " s"))]
+    pub rest: Option<f64>,
+    /// Window: write the bout's punch statistics (JSON) here on closing.
+    #[arg(long)]
+    pub stats: Option<PathBuf>,
+    /// Window: start with the round report open (for screenshots).
+    #[arg(long)]
+    pub report: bool,
+    /// Window: start with the menu open even with --opponent or --exit-after.
+    #[arg(long)]
+    pub menu: bool,
+    /// Window: render the 3D view at this fraction of the window's
+    /// resolution, 0.5-1 (default: chosen to hold 60 fps).
+    #[arg(long, value_parser = number_in(0.5, 1.0, ""))]
+    pub render_scale: Option<f64>,
     /// Print the default bindings (RON) and exit.
     #[arg(long)]
     pub print_bindings: bool,
@@ -363,6 +390,24 @@ pub fn load(scene: &str) -> Result<LoadedScene> {
     Ok(LoadedScene::load(std::path::Path::new(scene))?)
 }
 
+fn parse_opponent(s: &str) -> Result<shisen::scene::opponent::Opponent, String> {
+    s.parse()
+}
+
+/// A parser of a finite number within `[lo, hi]`, in `unit` ("s", "").
+fn number_in(lo: f64, hi: f64, unit: &'static str) -> impl Fn(&str) -> Result<f64, String> + Clone {
+    move |s| {
+        let v: f64 = s
+            .parse()
+            .map_err(|_| format!("expected a number, got '{s}'"))?;
+        if v.is_finite() && (lo..=hi).contains(&v) {
+            Ok(v)
+        } else {
+            Err(format!("must be {lo}-{hi}{unit}, got {s}"))
+        }
+    }
+}
+
 impl Cli {
     /// The first window option given, if any (they mean nothing to a
     /// subcommand).
@@ -377,6 +422,14 @@ impl Cli {
             (self.orbit, "--orbit"),
             (self.overlays, "--overlays"),
             (self.print_bindings, "--print-bindings"),
+            (self.opponent.is_some(), "--opponent"),
+            (self.rounds.is_some(), "--rounds"),
+            (self.round_length.is_some(), "--round-length"),
+            (self.rest.is_some(), "--rest"),
+            (self.stats.is_some(), "--stats"),
+            (self.report, "--report"),
+            (self.menu, "--menu"),
+            (self.render_scale.is_some(), "--render-scale"),
         ]
         .into_iter()
         .find_map(|(set, name)| set.then_some(name))

@@ -80,6 +80,14 @@ fn main() -> ExitCode {
                 open: cli.open,
                 orbit: cli.orbit,
                 overlays: cli.overlays,
+                opponent: cli.opponent,
+                rounds: cli.rounds,
+                round_length: cli.round_length,
+                rest: cli.rest,
+                stats: cli.stats,
+                report: cli.report,
+                menu: cli.menu,
+                render_scale: cli.render_scale.map(|s| s as f32),
             };
             // Bad input files are usage errors (2), as for every command,
             // and are found before a window opens.

@@ -34,6 +34,14 @@ pub enum Command {
     Restart,
     /// Start or stop recording the session.
     Record,
+    /// Open or close the menu (opponent, rounds, restart, quit).
+    Menu,
+    /// Open or close the round report.
+    Report,
+    /// Watch the bout so far again (a time scrubber), or go back to it.
+    Replay,
+    /// Show or hide the developer's figures (frame time, sim time).
+    DevFigures,
 }
 
 impl Command {

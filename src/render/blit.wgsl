@@ -1,9 +1,10 @@
-// Copy the rendered picture into the window's render pass, pixel for
-// pixel: a triangle covering the viewport, each fragment loading its texel
-// (no filtering, no colour conversion: the view handed in already has the
-// encoding the target expects).
+// Copy the rendered picture into the window's render pass: a triangle
+// covering the viewport, each fragment sampling the picture (bilinear, for
+// a picture rendered below the window's resolution; no colour conversion:
+// the view handed in already has the encoding the target expects).
 
 @group(0) @binding(0) var picture: texture_2d<f32>;
+@group(0) @binding(1) var filtered: sampler;
 
 struct Out {
     @builtin(position) clip: vec4<f32>,
@@ -21,7 +22,5 @@ fn vs_blit(@builtin(vertex_index) i: u32) -> Out {
 
 @fragment
 fn fs_blit(v: Out) -> @location(0) vec4<f32> {
-    let size = vec2<f32>(textureDimensions(picture));
-    let p = vec2<i32>(min(v.uv * size, size - 1.0));
-    return textureLoad(picture, p, 0);
+    return textureSample(picture, filtered, v.uv);
 }

@@ -88,6 +88,10 @@ pub struct Camera {
 /// and your own gloves in guard (some 27 deg below your line of sight)
 /// whole in the lower corners, as you would see them.
 const FIRST_FOV_DEG: f32 = 58.0;
+/// How far behind your eyes the first-person camera sits, m.
+const VIEW_BACK: f32 = 0.12;
+/// How far above them, m.
+const VIEW_UP: f32 = 0.04;
 /// Height of a head's centre above its neck's pivot, m (the VH's plan:
 /// `physics::body`), the lever through which a push on the head turns it.
 const NECK_LEVER: f32 = 0.165;
@@ -106,13 +110,17 @@ impl Camera {
                 let head = w.pose(w.part(OpponentPart::Head)).0;
                 // Look at the VH's face (between its eyes), not the head centre.
                 let face = (w.pose(Seg::EyeL).0 + w.pose(Seg::EyeR).0) / 2.0;
-                // From your eyes, in front of your head's centre as the
-                // VH's are of its own: your guard then sits at the bottom
-                // edge of the view, framing it, as a boxer sees his gloves.
-                let eye = head + (face - head).normalize_or_zero() * EYE_FORWARD;
+                // From just behind and above your eyes (your eyes are in
+                // front of your head's centre as the VH's are of its own):
+                // your gloves, 25 cm from your eyes, would fill the lower
+                // third of the view from the eyes themselves; from here
+                // they frame its bottom corners, a little smaller, under
+                // the VH's face, and the view still moves with your head.
+                let dir = (face - head).normalize_or_zero();
+                let eye = head + dir * (EYE_FORWARD - VIEW_BACK) + Vec3::Y * VIEW_UP;
                 Camera {
                     eye,
-                    target: face - Vec3::Y * 0.04,
+                    target: face + Vec3::Y * 0.02,
                     fov_y: FIRST_FOV_DEG.to_radians(),
                     aspect,
                 }

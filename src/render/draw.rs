@@ -30,9 +30,11 @@ pub enum MeshKey {
     /// The VH's eyelashes ([`Frame::lashes`](crate::render::Frame::lashes), a triangle list in the face
     /// frame).
     Lashes,
-    /// The boxing ring, one static mesh coloured per vertex
-    /// ([`super::ring::mesh`]).
+    /// The boxing ring and the hall round it, one static mesh coloured
+    /// per vertex ([`super::ring::mesh`]).
     Ring,
+    /// The lamps over the ring, unlit ([`super::ring::lamps`]).
+    Lamps,
     /// A left ear ([`super::geometry::ear`]; mirrored for the right).
     Ear,
     /// A tooth's crown: a rounded box of half extent 1
@@ -47,13 +49,39 @@ impl MeshKey {
     pub fn is_closed(self) -> bool {
         matches!(
             self,
-            MeshKey::Sphere | MeshKey::Cube | MeshKey::Tooth | MeshKey::Capsule { .. }
+            MeshKey::Sphere
+                | MeshKey::Cube
+                | MeshKey::Tooth
+                | MeshKey::Capsule { .. }
+                | MeshKey::Ring
+                | MeshKey::Lamps
         )
     }
 }
 
+/// The key light's direction of travel: from in front of the VH, above
+/// and to its left (your right), the light that models its face.
+pub const KEY_DIR: Vec3 = Vec3::new(-0.5, -0.8, -1.4);
+/// The fill light's direction of travel, from the other side.
+pub const FILL_DIR: Vec3 = Vec3::new(0.9, -0.15, -1.0);
+/// The top light: the lamps over the ring, nearly straight down and a
+/// little toward the VH's back, so its shadows pool under the fighters and
+/// fall a little behind the VH as you see it.
+pub const TOP_DIR: Vec3 = Vec3::new(-0.12, -1.0, -0.3);
+/// The top light's strength, against the key's 0.85 and the fill's 0.35.
+pub const TOP_LIGHT: f32 = 0.35;
+
+/// The plain material's light on a surface of normal `n` with nothing
+/// shadowing it (ambient 0.22, key 0.85, fill 0.35, top): what the
+/// shader computes for it, for surfaces lit once on the CPU (the ground,
+/// the static scenery).
+pub fn plain_light(n: Vec3) -> f32 {
+    let lambert = |dir: Vec3| n.dot(-dir.normalize()).max(0.0);
+    0.22 + 0.85 * lambert(KEY_DIR) + 0.35 * lambert(FILL_DIR) + TOP_LIGHT * lambert(TOP_DIR)
+}
+
 /// How a surface is shaded.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Material {
     /// Lit with the instance colour.
     Plain = 0,
@@ -72,6 +100,48 @@ pub enum Material {
     /// Hair seen as strands (the lashes): lit with the instance colour,
     /// matte (a highlight on strands thinner than a pixel greys them).
     Hair = 6,
+    /// A light source: its colour as it is, unlit, casting nothing.
+    Emissive = 7,
+}
+
+impl Material {
+    /// Every material.
+    pub const ALL: [Material; 8] = [
+        Material::Plain,
+        Material::Eye,
+        Material::Floor,
+        Material::Skin,
+        Material::Face,
+        Material::Body,
+        Material::Hair,
+        Material::Emissive,
+    ];
+
+    /// Its vertex and fragment stages (`shader.wgsl`).
+    pub fn stages(self) -> (&'static str, &'static str) {
+        match self {
+            Material::Plain => ("vs_mesh", "fs_plain"),
+            Material::Eye => ("vs_mesh", "fs_eye"),
+            Material::Floor => ("vs_mesh", "fs_floor"),
+            Material::Skin => ("vs_mesh", "fs_skin"),
+            Material::Face => ("vs_painted", "fs_face"),
+            Material::Body => ("vs_painted", "fs_body"),
+            Material::Hair => ("vs_mesh", "fs_hair"),
+            Material::Emissive => ("vs_mesh", "fs_emissive"),
+        }
+    }
+
+    /// Whether a draw of this material casts a shadow: not the ground,
+    /// the lamps or the scenery (lit once, they take no shadow and the
+    /// fighters are far from them); not the eyes, ears, teeth or lashes
+    /// (the head around them casts their shadow; the lashes are thinner
+    /// than a texel).
+    pub fn casts(self, mesh: MeshKey) -> bool {
+        !matches!(
+            self,
+            Material::Floor | Material::Emissive | Material::Hair | Material::Eye
+        ) && !matches!(mesh, MeshKey::Ring | MeshKey::Ear | MeshKey::Tooth)
+    }
 }
 
 /// One mesh instance.

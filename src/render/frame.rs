@@ -58,6 +58,9 @@ pub struct Frame {
     pub lines: Vec<LineVertex>,
     /// Overlay labels.
     pub labels: Vec<Label>,
+    /// What the top light's shadow map covers: a sphere (centre, radius)
+    /// round both fighters and the shadows they cast.
+    pub shadow_focus: (Vec3, f32),
 }
 
 /// Which part of your body is drawn.
@@ -135,6 +138,16 @@ const AXIS_LEN: f32 = 0.06;
 /// the head body's centre, in the head body's frame.
 pub fn face_offset(plan: &BodyPlan) -> Vec3 {
     BodyPlan::eyes_midpoint().as_vec3() - plan.segments[Seg::Head.index()].centre
+}
+
+/// The shadow map's sphere round two fighters whose heads are at `a` and
+/// `b`: centred between them half way up, reaching a body's half width
+/// and its shadow's spread beyond each head (1.3 m).
+fn shadow_focus(a: Vec3, b: Vec3) -> (Vec3, f32) {
+    let mid = (a + b) / 2.0;
+    let centre = Vec3::new(mid.x, 0.8, mid.z);
+    let half = Vec3::new(a.x - b.x, 0.0, a.z - b.z).length() / 2.0;
+    (centre, half + 1.3)
 }
 
 impl Frame {
@@ -284,6 +297,7 @@ impl Frame {
             },
             lines: Vec::new(),
             labels: Vec::new(),
+            shadow_focus: shadow_focus(w.position(Seg::Head), you_head),
         };
         frame.add_overlays(sim, overlays);
         frame

@@ -8,7 +8,7 @@ use std::num::NonZeroU64;
 use glam::{Mat3, Mat4, Vec3};
 use wgpu::util::DeviceExt;
 
-use super::draw::{LineVertex, Material, MeshKey};
+use super::draw::{FILL_DIR, KEY_DIR, LineVertex, Material, MeshKey, TOP_DIR, TOP_LIGHT};
 use super::frame::{AvatarPart, Frame, Looks};
 use super::geometry::{self, MeshData, Vertex};
 
@@ -45,6 +45,10 @@ pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrg
 /// The same texture viewed without sRGB decoding, as egui samples its images.
 pub const COLOR_FORMAT_UNORM: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Shadow map side, texels: on a GPU, and on a software rasteriser,
+/// where a depth pass over the bodies costs in proportion (the map covers
+/// both fighters and their shadows: about 4 m, 2 mm a texel at 2048).
+const SHADOW_SIZE: [u32; 2] = [2048, 1024];
 /// Dynamic-offset stride of the per-instance uniforms.
 const INSTANCE_STRIDE: u64 = 256;
 /// Background (linear RGB).
@@ -67,6 +71,13 @@ struct Globals {
     /// The face's lips, brows and hair, and the inside of the mouth
     /// (linear RGB).
     face_regions: [[f32; 4]; 4],
+    /// World to the top light's clip space (its shadow map).
+    light_view_proj: [[f32; 4]; 4],
+    /// The top light's direction of travel.
+    top_dir: [f32; 4],
+    /// x: the top light's strength; y: shadows on (1) or off (0); z: the
+    /// normal offset of a shadow lookup, m (a texel and a half).
+    shadow: [f32; 4],
 }
 
 #[repr(C)]
@@ -137,12 +148,14 @@ impl Growable {
 }
 
 /// Draws the renderer's last picture into another render pass (the
-/// window's), texel for texel. Showing the picture as an egui image costs
+/// window's), scaled to it with bilinear filtering (the window may render
+/// its view below its own resolution: `Viewport`'s render scale). Showing the picture as an egui image costs
 /// egui's textured, colour-converting shader on every window pixel: 20 ms
 /// a frame at 1280x720 on a software Vulkan, more than the scene itself.
 pub struct Blit {
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
+    sampler: wgpu::Sampler,
     /// The target decodes sRGB itself (so it is handed linear texels).
     srgb_target: bool,
 }
@@ -156,16 +169,30 @@ impl Blit {
         });
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("shisen blit"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
                 },
-                count: None,
-            }],
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+            ],
+        });
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("shisen blit"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("shisen blit"),
@@ -200,6 +227,7 @@ impl Blit {
         Blit {
             pipeline,
             layout,
+            sampler,
             srgb_target: format.is_srgb(),
         }
     }
@@ -218,10 +246,16 @@ impl Blit {
             .create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("shisen blit"),
                 layout: &self.layout,
-                entries: &[wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::TextureView(&view),
-                }],
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::TextureView(&view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::Sampler(&self.sampler),
+                    },
+                ],
             });
         Some(BlitBind {
             pipeline: self.pipeline.clone(),
@@ -251,14 +285,18 @@ pub struct Renderer {
     device: wgpu::Device,
     queue: wgpu::Queue,
     samples: u32,
-    mesh_pipeline: wgpu::RenderPipeline,
-    /// The same with back faces culled, for closed meshes.
-    closed_pipeline: wgpu::RenderPipeline,
-    /// The face's.
-    face_pipeline: wgpu::RenderPipeline,
-    /// The skinned bodies'.
-    body_pipeline: wgpu::RenderPipeline,
+    /// A software rasteriser (lavapipe, llvmpipe).
+    software: bool,
+    /// A pipeline per material and culling (back faces skipped for
+    /// closed meshes).
+    pipelines: HashMap<(Material, bool), wgpu::RenderPipeline>,
     line_pipeline: wgpu::RenderPipeline,
+    /// Depth from the top light.
+    shadow_pipeline: wgpu::RenderPipeline,
+    shadow_view: wgpu::TextureView,
+    shadow_size: u32,
+    /// The globals alone (the shadow pass: its map is not bound there).
+    shadow_globals_bind: wgpu::BindGroup,
     globals: wgpu::Buffer,
     globals_bind: wgpu::BindGroup,
     instance_layout: wgpu::BindGroupLayout,
@@ -337,21 +375,100 @@ impl Renderer {
             .into_iter()
             .find(|&n| n <= max_samples && flags.sample_count_supported(n))
             .unwrap_or(1);
+        let software = adapter.get_info().device_type == wgpu::DeviceType::Cpu;
+        let shadow_size = SHADOW_SIZE[usize::from(software)];
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("shisen shader"),
             source: wgpu::ShaderSource::Wgsl(shader_source().into()),
         });
         let globals_size = size_of::<Globals>() as u64;
         let instance_size = size_of::<Instance>() as u64;
-        let globals_layout = uniform_layout(device, false, globals_size);
+        let shadow_globals_layout = uniform_layout(device, false, globals_size);
+        let globals_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("shisen globals"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: NonZeroU64::new(globals_size),
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Depth,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Comparison),
+                    count: None,
+                },
+            ],
+        });
         let instance_layout = uniform_layout(device, true, instance_size);
+        let shadow_view = device
+            .create_texture(&wgpu::TextureDescriptor {
+                label: Some("shisen shadow map"),
+                size: wgpu::Extent3d {
+                    width: shadow_size,
+                    height: shadow_size,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: DEPTH_FORMAT,
+                usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                    | wgpu::TextureUsages::TEXTURE_BINDING,
+                view_formats: &[],
+            })
+            .create_view(&Default::default());
+        let shadow_sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("shisen shadow"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            compare: Some(wgpu::CompareFunction::LessEqual),
+            ..Default::default()
+        });
         let globals = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("shisen globals"),
             size: globals_size,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
-        let globals_bind = bind(device, &globals_layout, &globals, globals_size);
+        let shadow_globals_bind = bind(device, &shadow_globals_layout, &globals, globals_size);
+        let globals_bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("shisen globals"),
+            layout: &globals_layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &globals,
+                        offset: 0,
+                        size: NonZeroU64::new(globals_size),
+                    }),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&shadow_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::Sampler(&shadow_sampler),
+                },
+            ],
+        });
         let instances = Growable::new(device, "shisen instances", wgpu::BufferUsages::UNIFORM);
         let instance_bind = bind(device, &instance_layout, &instances.buffer, instance_size);
         let lines = Growable::new(device, "shisen lines", wgpu::BufferUsages::VERTEX);
@@ -426,16 +543,18 @@ impl Renderer {
                 cull_mode,
             )
         };
-        let mesh_pipeline = mesh("vs_mesh", "fs_mesh", None);
-        // Closed meshes wound counter-clockwise seen from outside (the
+        // Each material its own fragment stage, which no other pays for;
+        // closed meshes wound counter-clockwise seen from outside (the
         // bodies, spheres, capsules, boxes) never show their inside: their
         // back faces are skipped, half their triangles.
-        let closed_pipeline = mesh("vs_mesh", "fs_mesh", Some(wgpu::Face::Back));
-        // The face (an open mesh) has its own shaders: wrinkles and painted
-        // borders, which no other mesh pays for.
-        let face_pipeline = mesh("vs_painted", "fs_face", None);
-        // The skinned bodies (closed) likewise: the vest's hem.
-        let body_pipeline = mesh("vs_painted", "fs_body", Some(wgpu::Face::Back));
+        let mut pipelines = HashMap::new();
+        for m in Material::ALL {
+            let (vs, fs) = m.stages();
+            for closed in [false, true] {
+                let cull = closed.then_some(wgpu::Face::Back);
+                pipelines.insert((m, closed), mesh(vs, fs, cull));
+            }
+        }
         // Overlays are drawn over everything so rays inside the head show.
         let line_pipeline = pipeline(
             "vs_line",
@@ -447,15 +566,58 @@ impl Renderer {
             wgpu::CompareFunction::Always,
             None,
         );
+        // Depth from the top light: the vertex stage alone, back faces
+        // culled (the lit side's depth is what shadows, and half the
+        // triangles), biased by slope.
+        let shadow_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("shisen shadow"),
+            bind_group_layouts: &[Some(&shadow_globals_layout), Some(&instance_layout)],
+            immediate_size: 0,
+        });
+        let shadow_pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("shisen shadow"),
+            layout: Some(&shadow_layout),
+            vertex: wgpu::VertexState {
+                module: &shader,
+                entry_point: Some("vs_shadow"),
+                compilation_options: Default::default(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: size_of::<Vertex>() as u64,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &mesh_attrs[..1],
+                })],
+            },
+            primitive: wgpu::PrimitiveState {
+                cull_mode: Some(wgpu::Face::Back),
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: wgpu::DepthBiasState {
+                    constant: 2,
+                    slope_scale: 2.0,
+                    clamp: 0.0,
+                },
+            }),
+            multisample: Default::default(),
+            fragment: None,
+            multiview_mask: None,
+            cache: None,
+        });
         let mut r = Renderer {
             device: device.clone(),
             queue: queue.clone(),
             samples,
-            mesh_pipeline,
-            closed_pipeline,
-            face_pipeline,
-            body_pipeline,
+            software,
+            pipelines,
             line_pipeline,
+            shadow_pipeline,
+            shadow_view,
+            shadow_size,
+            shadow_globals_bind,
             globals,
             globals_bind,
             instance_layout,
@@ -471,6 +633,7 @@ impl Renderer {
         r.upload(MeshKey::Floor, &geometry::floor());
         r.upload(MeshKey::Ear, &geometry::ear());
         r.upload(MeshKey::Ring, &super::ring::mesh());
+        r.upload(MeshKey::Lamps, &super::ring::lamps());
         // Crowns: boxy, with edges rounded over about a fifth of their size.
         r.upload(MeshKey::Tooth, &geometry::rounded_box(5.0));
         r
@@ -501,6 +664,11 @@ impl Renderer {
     fn upload(&mut self, key: MeshKey, data: &MeshData) {
         let mesh = self.make_mesh(data, wgpu::BufferUsages::empty());
         self.meshes.insert(key, mesh);
+    }
+
+    /// Whether the adapter is a software rasteriser.
+    pub fn software(&self) -> bool {
+        self.software
     }
 
     /// MSAA sample count in use (4 where the adapter supports it).
@@ -620,14 +788,15 @@ impl Renderer {
         );
 
         let cam = &frame.camera;
-        let (key, fill) = (
-            Vec3::new(-0.5, -0.8, -1.4).normalize(),
-            Vec3::new(0.9, -0.15, -1.0).normalize(),
-        );
+        let (key, fill) = (KEY_DIR.normalize(), FILL_DIR.normalize());
         // The shader's plain lighting (ambient 0.22, key 0.85, fill 0.35)
         // on the floor's upward normal.
         let floor_light = 0.22 + 0.85 * (-key.y).max(0.0) + 0.35 * (-fill.y).max(0.0);
+        let (light_view_proj, texel) = shadow_frustum(frame.shadow_focus, self.shadow_size);
         let globals = Globals {
+            light_view_proj: light_view_proj.to_cols_array_2d(),
+            top_dir: TOP_DIR.normalize().extend(0.0).to_array(),
+            shadow: [TOP_LIGHT, 1.0, 1.5 * texel, 0.0],
             view_proj: cam.view_proj().to_cols_array_2d(),
             camera: cam.eye.extend(1.0).to_array(),
             key_dir: key.extend(0.0).to_array(),
@@ -677,6 +846,41 @@ impl Renderer {
                 label: Some("shisen frame"),
             });
         {
+            let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("shisen shadow"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &self.shadow_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.shadow_pipeline);
+            pass.set_bind_group(0, &self.shadow_globals_bind, &[]);
+            for (i, d) in frame.draws.iter().enumerate() {
+                if !d.material.casts(d.mesh) {
+                    continue;
+                }
+                let Some(mesh) = self.mesh_of(d.mesh) else {
+                    continue;
+                };
+                pass.set_bind_group(
+                    1,
+                    &self.instance_bind,
+                    &[(i as u64 * INSTANCE_STRIDE) as u32],
+                );
+                pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+                pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..mesh.count, 0, 0..1);
+            }
+        }
+        {
             let (view, resolve) = match &target.msaa_view {
                 Some(m) => (m, Some(&target.color_view)),
                 None => (&target.color_view, None),
@@ -704,27 +908,14 @@ impl Renderer {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_pipeline(&self.mesh_pipeline);
             pass.set_bind_group(0, &self.globals_bind, &[]);
             for (i, d) in frame.draws.iter().enumerate() {
-                let mesh = match d.mesh {
-                    MeshKey::Face | MeshKey::Body | MeshKey::Avatar | MeshKey::Lashes => {
-                        match self.dynamic.get(&d.mesh) {
-                            Some((m, _)) => m,
-                            None => continue,
-                        }
-                    }
-                    key => &self.meshes[&key],
+                let Some(mesh) = self.mesh_of(d.mesh) else {
+                    continue;
                 };
-                pass.set_pipeline(if d.material == Material::Face {
-                    &self.face_pipeline
-                } else if d.material == Material::Body {
-                    &self.body_pipeline
-                } else if d.mesh.is_closed() {
-                    &self.closed_pipeline
-                } else {
-                    &self.mesh_pipeline
-                });
+                // The skinned bodies are closed (their keys are dynamic).
+                let closed = d.mesh.is_closed() || d.material == Material::Body;
+                pass.set_pipeline(&self.pipelines[&(d.material, closed)]);
                 pass.set_bind_group(
                     1,
                     &self.instance_bind,
@@ -742,6 +933,16 @@ impl Renderer {
             }
         }
         self.queue.submit([enc.finish()]);
+    }
+
+    /// The GPU mesh of a key (a dynamic one once uploaded).
+    fn mesh_of(&self, key: MeshKey) -> Option<&GpuMesh> {
+        match key {
+            MeshKey::Face | MeshKey::Body | MeshKey::Avatar | MeshKey::Lashes => {
+                self.dynamic.get(&key).map(|(m, _)| m)
+            }
+            key => self.meshes.get(&key),
+        }
     }
 
     /// Block until the GPU has finished the submitted work.
@@ -809,6 +1010,30 @@ impl Renderer {
         image::RgbaImage::from_raw(w, h, pixels)
             .ok_or_else(|| RenderError::Readback("short image".into()))
     }
+}
+
+/// The top light's view and orthographic projection over a sphere of
+/// `focus` (centre, radius), snapped to whole texels of a `size`-texel map
+/// so the shadows do not shimmer as the fighters move; and the world size
+/// of a texel.
+fn shadow_frustum((centre, radius): (Vec3, f32), size: u32) -> (Mat4, f32) {
+    let dir = TOP_DIR.normalize();
+    let view = glam::camera::rh::view::look_at_mat4(Vec3::ZERO, dir, Vec3::Z);
+    let texel = 2.0 * radius / size as f32;
+    let c = view.transform_point3(centre);
+    let snap = |v: f32| (v / texel).round() * texel;
+    let (x, y) = (snap(c.x), snap(c.y));
+    // The light looks down -Z of its view: the near plane well above the
+    // rig, the far plane below the hall's floor.
+    let proj = glam::camera::rh::proj::directx::orthographic(
+        x - radius,
+        x + radius,
+        y - radius,
+        y + radius,
+        -c.z - 12.0,
+        -c.z + 6.0,
+    );
+    (proj * view, texel)
 }
 
 /// The main shader, with the eye's drawn proportions (`anatomy::eye`)

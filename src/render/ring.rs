@@ -1,6 +1,9 @@
 //! The boxing ring: canvas, apron and platform, corner posts and pads,
-//! four ropes, in a dim hall (the clear colour). Static scenery, drawn with the
-//! shared primitives (no physics: the fighters do not reach the ropes).
+//! four ropes, under a rig of lamps, in a dim hall: its floor, banks of
+//! seats on four sides, dark beyond (the clear colour). Static scenery,
+//! drawn with the shared primitives (no physics: the fighters do not reach
+//! the ropes). The ring's size and corners are the bout's
+//! (`shisen::sim::bout`).
 //!
 //! Sizes follow amateur rules (AIBA Technical & Competition Rules): a
 //! ring 4.9-6.1 m square inside the ropes (here 5.5 m), four ropes 40.6,
@@ -10,13 +13,24 @@
 
 use glam::{Mat3, Mat4, Quat, Vec3};
 
-use super::draw::{Draw, Material, MeshKey};
+use super::draw::{Draw, Material, MeshKey, plain_light};
 use super::geometry::{self, MeshData};
+use shisen::sim::bout;
 
 /// Half the ring's side inside the ropes, m.
-pub const HALF: f32 = 2.75;
+const HALF: f32 = bout::RING_HALF as f32;
 /// Centre of the ring, world (midway between the fighters at rest).
-pub const CENTRE: Vec3 = Vec3::new(0.0, 0.0, 0.46);
+const CENTRE: Vec3 = Vec3::new(
+    bout::RING_CENTRE.x as f32,
+    bout::RING_CENTRE.y as f32,
+    bout::RING_CENTRE.z as f32,
+);
+/// The lamp rig's height above the canvas, m.
+const RIG: f32 = 3.6;
+/// The hall's floor and the seats' colour.
+const HALL: [f32; 4] = [0.035, 0.035, 0.04, 1.0];
+const SEATS: [f32; 4] = [0.03, 0.024, 0.028, 1.0];
+const LAMP: [f32; 4] = [3.0, 2.8, 2.4, 1.0];
 /// Heights of the ropes above the canvas, m.
 const ROPES: [f32; 4] = [0.406, 0.711, 1.016, 1.321];
 /// Rope radius, m.
@@ -33,12 +47,13 @@ const SKIRT: [f32; 4] = [0.05, 0.07, 0.16, 1.0];
 const ROPE: [f32; 4] = [0.85, 0.85, 0.85, 1.0];
 const ROPE_RED: [f32; 4] = [0.70, 0.06, 0.06, 1.0];
 const POST_METAL: [f32; 4] = [0.12, 0.12, 0.13, 1.0];
-/// Corner pads: the VH's corner red, yours blue, the neutral corners white.
+/// Corner pads, in the order of [`pieces`]' corners: the VH's corner
+/// (behind it on its left) red, yours blue, the neutral corners white.
 const PADS: [[f32; 4]; 4] = [
+    [0.85, 0.85, 0.85, 1.0],
     [0.70, 0.05, 0.05, 1.0],
     [0.85, 0.85, 0.85, 1.0],
     [0.06, 0.16, 0.70, 1.0],
-    [0.85, 0.85, 0.85, 1.0],
 ];
 
 /// One piece of the ring: a mesh placed by `model`, in one colour.
@@ -77,8 +92,16 @@ fn bar(a: Vec3, b: Vec3, r: f32, color: [f32; 4]) -> Piece {
 /// The ring but its canvas as one mesh with its colours in the vertices:
 /// static scenery in a single draw call.
 pub fn mesh() -> MeshData {
+    bake(pieces(), true)
+}
+
+/// The pieces as one mesh, in world coordinates, with their colours in
+/// the vertices, `lit` by the scene's lights once here (static scenery
+/// under static lights: the software rasteriser shades it at the cost of a
+/// copy; the fighters' shadows fall on the canvas, not on it).
+fn bake(pieces: Vec<Piece>, lit: bool) -> MeshData {
     let mut out = MeshData::default();
-    for p in pieces() {
+    for p in pieces {
         let m = match p.capsule {
             // Ropes and posts a few pixels wide: six sides are round enough.
             Some((h, r)) => geometry::capsule_with(h, r, 2, 6),
@@ -89,8 +112,15 @@ pub fn mesh() -> MeshData {
         out.vertices.extend(m.vertices.iter().map(|v| {
             let mut v = *v;
             v.pos = p.model.transform_point3(Vec3::from(v.pos)).to_array();
-            v.normal = (normal * Vec3::from(v.normal)).normalize().to_array();
-            v.color = p.color;
+            let n = (normal * Vec3::from(v.normal)).normalize();
+            v.normal = n.to_array();
+            let light = if lit { plain_light(n) } else { 1.0 };
+            v.color = [
+                p.color[0] * light,
+                p.color[1] * light,
+                p.color[2] * light,
+                1.0,
+            ];
             v
         }));
         out.indices.extend(m.indices.iter().map(|i| i + base));
@@ -98,13 +128,14 @@ pub fn mesh() -> MeshData {
     out
 }
 
-/// The ring's draws: the canvas, flat-lit (it covers a third of the
-/// picture), then the rest as one mesh ([`MeshKey::Ring`], uploaded once).
+/// The ring's draws: the canvas, flat-lit but for the fighters' shadows
+/// (it covers a third of the picture), then the rest as one mesh lit once
+/// on the CPU ([`MeshKey::Ring`], uploaded once), and the lamps.
 /// The canvas goes first so the platform's top face under it fails the
 /// depth test before it is shaded: drawn the other way round, a software
 /// rasteriser lit that hidden face at every canvas pixel (a seventh of the
 /// frame rate).
-pub fn draws() -> [Draw; 2] {
+pub fn draws() -> [Draw; 3] {
     let side = HALF + APRON;
     [
         Draw {
@@ -121,9 +152,39 @@ pub fn draws() -> [Draw; 2] {
             mesh: MeshKey::Ring,
             model: Mat4::IDENTITY,
             color: [1.0; 4],
-            material: Material::Plain,
+            material: Material::Emissive,
+        },
+        Draw {
+            mesh: MeshKey::Lamps,
+            model: Mat4::IDENTITY,
+            color: [1.0; 4],
+            material: Material::Emissive,
         },
     ]
+}
+
+/// The lamps under the rig: two rows of four over each side of the
+/// ring, facing down.
+fn lamp_pieces() -> Vec<Piece> {
+    let mut out = Vec::new();
+    for i in 0..4 {
+        for side in [-1.0, 1.0] {
+            let x = (i as f32 - 1.5) * HALF * 0.5;
+            for (a, b) in [(x, side * HALF * 0.8), (side * HALF * 0.8, x)] {
+                out.push(cube(
+                    CENTRE + Vec3::new(a, RIG - 0.08, b),
+                    Vec3::new(0.14, 0.03, 0.14),
+                    LAMP,
+                ));
+            }
+        }
+    }
+    out
+}
+
+/// The lamps as one mesh.
+pub fn lamps() -> MeshData {
+    bake(lamp_pieces(), false)
 }
 
 /// The ring's pieces.
@@ -154,6 +215,48 @@ fn pieces() -> Vec<Piece> {
         Vec3::new(side, (PLATFORM - 0.04) / 2.0, side),
         SKIRT,
     ));
+    // The hall's floor round the platform (not under it, where it would
+    // be drawn only to fail the depth test at every pixel of the canvas).
+    for k in 0..4 {
+        let turn = Quat::from_rotation_y(k as f32 * std::f32::consts::FRAC_PI_2);
+        // A pinwheel of four slabs, each from the platform's edge 12 m out.
+        let at = CENTRE + turn * Vec3::new(6.0, -PLATFORM - 0.05, side + 6.0);
+        let mut piece = cube(at, Vec3::ONE, HALL);
+        piece.model = Mat4::from_translation(at)
+            * Mat4::from_quat(turn)
+            * Mat4::from_scale(Vec3::new(side + 6.0, 0.05, 6.0));
+        out.push(piece);
+    }
+    // Banks of seats on four sides, rising away from the ring: five rows
+    // of 0.9 m, each 0.45 m higher, from 2.5 m beyond the apron.
+    for k in 0..4 {
+        let turn = Quat::from_rotation_y(k as f32 * std::f32::consts::FRAC_PI_2);
+        for row in 0..5 {
+            let d = side + 2.5 + row as f32 * 0.9;
+            let h = 0.45 * (row + 1) as f32;
+            let at = CENTRE + turn * Vec3::new(0.0, -PLATFORM + h / 2.0, d);
+            let mut piece = cube(at, Vec3::new(d, h / 2.0, 0.45), SEATS);
+            piece.model = Mat4::from_translation(at)
+                * Mat4::from_quat(turn)
+                * Mat4::from_scale(Vec3::new(d, h / 2.0, 0.45));
+            out.push(piece);
+        }
+    }
+    // The lamp rig: a square truss on four columns outside the apron.
+    let r = HALF * 0.95;
+    let rig = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+        .map(|(x, z)| CENTRE + Vec3::new(x * r, RIG, z * r));
+    for (k, &c) in rig.iter().enumerate() {
+        out.push(bar(c, rig[(k + 1) % 4], 0.05, POST_METAL));
+        let foot = CENTRE + (c - CENTRE) * ((side + 1.0) / r) * Vec3::new(1.0, 0.0, 1.0);
+        out.push(bar(
+            foot - Vec3::Y * PLATFORM,
+            foot + Vec3::Y * (RIG + 0.05),
+            0.06,
+            POST_METAL,
+        ));
+        out.push(bar(foot + Vec3::Y * RIG, c, 0.05, POST_METAL));
+    }
     out
 }
 
@@ -167,11 +270,16 @@ mod tests {
     fn the_ring_holds_the_fighters() {
         let d = pieces();
         let bars = d.iter().filter(|x| x.capsule.is_some()).count();
-        assert_eq!(bars, 4 + 16, "four posts, sixteen ropes");
+        assert_eq!(bars, 4 + 16 + 12, "four posts, sixteen ropes, the rig");
         let m = mesh();
         assert!(m.indices.iter().all(|&i| (i as usize) < m.vertices.len()));
         let top = m.vertices.iter().map(|v| v.pos[1]).fold(f32::MIN, f32::max);
-        assert!((top - POST.0).abs() < 0.05, "posts' tops: {top}");
+        assert!((top - RIG).abs() < 0.15, "the rig's top: {top}");
+        // Every lamp hangs over the canvas, under the rig.
+        for v in lamps().vertices {
+            let p = Vec3::from(v.pos) - CENTRE;
+            assert!(p.x.abs() < HALF && p.z.abs() < HALF && p.y < RIG, "{p}");
+        }
         for fighter in [Vec3::ZERO, Vec3::new(0.0, 0.0, 0.92)] {
             let off = (fighter - CENTRE).abs();
             assert!(off.x < HALF - 1.0 && off.z < HALF - 1.0);

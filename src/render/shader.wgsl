@@ -1,6 +1,7 @@
-// Lit meshes (key + fill + ambient, Lambert + Blinn-Phong specular), a
-// procedural eyeball (sclera, iris, pupil about the local +Z pole), a
-// flat-lit ground, and unlit overlay lines.
+// Lit meshes (key + fill + ambient, Lambert + Blinn-Phong specular, and
+// the lamps over the ring from above, with their shadows from a shadow
+// map), a procedural eyeball (sclera, iris and pupil about the local +Z
+// pole), a flat-lit ground, unlit lamps, and unlit overlay lines.
 
 struct Globals {
     view_proj: mat4x4<f32>,
@@ -11,6 +12,12 @@ struct Globals {
     floor_light: vec4<f32>,
     // The face's lips, brows and hair.
     face_regions: array<vec4<f32>, 4>,
+    // World to the top light's clip space.
+    light_view_proj: mat4x4<f32>,
+    // The top light's direction of travel.
+    top_dir: vec4<f32>,
+    // x: the top light's strength; y: shadows on; z: normal offset, m.
+    shadow: vec4<f32>,
 };
 
 struct Instance {
@@ -18,12 +25,13 @@ struct Instance {
     // Inverse transpose of the model's upper 3x3, in a mat4 for alignment.
     normal: mat4x4<f32>,
     color: vec4<f32>,
-    // x: material (0 plain, 1 eye, 2 floor, 3 skin, 6 hair; 4 face and 5 body have
-    // their own fragment stages, fs_face and fs_body).
+    // x: material (`draw::Material`; each has its own fragment stage).
     params: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> g: Globals;
+@group(0) @binding(1) var shadow_map: texture_depth_2d;
+@group(0) @binding(2) var shadow_sampler: sampler_comparison;
 @group(1) @binding(0) var<uniform> inst: Instance;
 
 struct VOut {
@@ -48,6 +56,39 @@ fn vs_mesh(
     o.normal = (inst.normal * vec4<f32>(normal, 0.0)).xyz;
     o.local = pos;
     return o;
+}
+
+// Depth from the top light (the shadow pass).
+@vertex
+fn vs_shadow(@location(0) pos: vec3<f32>) -> @builtin(position) vec4<f32> {
+    return g.light_view_proj * (inst.model * vec4<f32>(pos, 1.0));
+}
+
+// How much of the top light reaches `world` (normal `n`): 0 in shadow, 1
+// lit, the map's 2x2 texels filtered by the comparison sampler. The
+// lookup is pushed out along the normal by a texel and a half, so a
+// surface does not shadow itself.
+fn top_lit(world: vec3<f32>, n: vec3<f32>) -> f32 {
+    if (g.shadow.y < 0.5) {
+        return 1.0;
+    }
+    let p = g.light_view_proj * vec4<f32>(world + n * g.shadow.z, 1.0);
+    let uv = vec2<f32>(p.x * 0.5 + 0.5, 0.5 - p.y * 0.5);
+    if (uv.x <= 0.0 || uv.x >= 1.0 || uv.y <= 0.0 || uv.y >= 1.0 || p.z >= 1.0) {
+        return 1.0;
+    }
+    return textureSampleCompareLevel(shadow_map, shadow_sampler, uv, p.z);
+}
+
+// The top light on a surface of normal `n`: wrapped by `wrap` (skin), and
+// shadowed.
+fn top_light(world: vec3<f32>, n: vec3<f32>, wrap: f32) -> f32 {
+    let top = normalize(-g.top_dir.xyz);
+    let d = max((dot(n, top) + wrap) / (1.0 + wrap), 0.0);
+    if (d <= 0.0) {
+        return 0.0;
+    }
+    return g.shadow.x * d * top_lit(world, n);
 }
 
 // The face and the skinned bodies have their own entry points, so no other
@@ -116,7 +157,7 @@ fn eye_colour(local: vec3<f32>) -> vec3<f32> {
 // and reddens there; a weak, broad sheen instead of a plastic highlight;
 // a faint rim where the skin turns away. `shade` darkens the diffuse part
 // (wrinkles' furrows).
-fn skin(base: vec3<f32>, n: vec3<f32>, view_dir: vec3<f32>, shade: f32) -> vec3<f32> {
+fn skin(base: vec3<f32>, n: vec3<f32>, view_dir: vec3<f32>, shade: f32, top: f32) -> vec3<f32> {
     let key = normalize(-g.key_dir.xyz);
     let fill = normalize(-g.fill_dir.xyz);
     let h = normalize(key + view_dir);
@@ -129,7 +170,7 @@ fn skin(base: vec3<f32>, n: vec3<f32>, view_dir: vec3<f32>, shade: f32) -> vec3<
     let c2 = max(dot(n, h), 0.0) * max(dot(n, h), 0.0);
     let c4 = c2 * c2;
     let sheen = 0.06 * c4 * c4 * c4;
-    let lit = (base * (0.20 + 0.80 * kd + 0.30 * fd) + base * scatter) * shade + vec3<f32>(sheen + rim * 0.5);
+    let lit = (base * (0.20 + 0.80 * kd + 0.30 * fd + top) + base * scatter) * shade + vec3<f32>(sheen + rim * 0.5);
     return lit;
 }
 
@@ -142,7 +183,7 @@ fn fs_body(v: PaintedOut) -> @location(0) vec4<f32> {
     let n = normalize(v.normal);
     let aa = max(fwidth(v.paint.x), 1.0);
     let base = mix(inst.color.rgb * v.color.rgb, v.paint.yzw, smoothstep(-aa, aa, v.paint.x));
-    return vec4<f32>(skin(base, n, view_dir, 1.0), 1.0);
+    return vec4<f32>(skin(base, n, view_dir, 1.0, top_light(v.world, n, 0.45)), 1.0);
 }
 
 // The face: skin with its painted borders and expression wrinkles.
@@ -206,40 +247,29 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
             min(v.wrinkle.y, 1.0) * mix(0.375, vy, ry),
         );
     }
-    return vec4<f32>(skin(base, n, view_dir, (1.0 - 0.33 * furrow) * tilt), 1.0);
+    let top = top_light(v.world, normalize(v.normal), 0.45);
+    return vec4<f32>(skin(base, n, view_dir, (1.0 - 0.33 * furrow) * tilt, top), 1.0);
 }
 
-@fragment
-fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
-    let material = u32(inst.params.x + 0.5);
-    if (material == 2u) {
-        // Flat ground lit from above (the ring's canvas): its light is the
-        // same everywhere, so nothing per pixel but the colour (it covers
-        // a third of the picture).
-        return vec4<f32>(inst.color.rgb * v.color.rgb * g.floor_light.x, 1.0);
-    }
+// One entry point a material: a software rasteriser runs every
+// instruction of a fragment stage for every pixel it covers, branches and
+// all (its lanes are masked, not skipped), so the ground, the lamps and the
+// scenery pay for nothing but their own few instructions.
+
+// Lit plain: key, fill, the lamps above (shadowed), ambient, and a
+// Blinn-Phong highlight of strength `shine`.
+fn plain_lit(v: VOut, base: vec3<f32>, shine: f32) -> vec4<f32> {
     let view_dir = normalize(g.camera.xyz - v.world);
     var n = normalize(v.normal);
     // Two-sided: face the normal toward the viewer.
     if (dot(n, view_dir) < 0.0) {
         n = -n;
     }
-    var base = inst.color.rgb * v.color.rgb;
-    if (material == 3u) {
-        return vec4<f32>(skin(base, n, view_dir, 1.0), 1.0);
-    }
-    var shine = 0.25;
     let key = normalize(-g.key_dir.xyz);
     let fill = normalize(-g.fill_dir.xyz);
     let h = normalize(key + view_dir);
-    if (material == 1u) {
-        base = eye_colour(v.local);
-        shine = 0.8;
-    }
-    if (material == 6u) {
-        shine = 0.0;
-    }
-    let diffuse = 0.85 * max(dot(n, key), 0.0) + 0.35 * max(dot(n, fill), 0.0);
+    let diffuse = 0.85 * max(dot(n, key), 0.0) + 0.35 * max(dot(n, fill), 0.0)
+        + top_light(v.world, n, 0.0);
     let ambient = 0.22;
     // (n.h)^40 by squaring: pow() is exp2(log2) per sample on a software
     // rasteriser.
@@ -247,8 +277,49 @@ fn fs_mesh(v: VOut) -> @location(0) vec4<f32> {
     let c8 = (c * c) * (c * c) * (c * c) * (c * c);
     let c32 = (c8 * c8) * (c8 * c8);
     let spec = shine * c32 * c8;
-    let colour = base * (ambient + diffuse) + vec3<f32>(spec);
-    return vec4<f32>(colour, 1.0);
+    return vec4<f32>(base * (ambient + diffuse) + vec3<f32>(spec), 1.0);
+}
+
+@fragment
+fn fs_plain(v: VOut) -> @location(0) vec4<f32> {
+    return plain_lit(v, inst.color.rgb * v.color.rgb, 0.25);
+}
+
+// Strands (the lashes): matte, a highlight on strands thinner than a
+// pixel greys them.
+@fragment
+fn fs_hair(v: VOut) -> @location(0) vec4<f32> {
+    return plain_lit(v, inst.color.rgb * v.color.rgb, 0.0);
+}
+
+@fragment
+fn fs_eye(v: VOut) -> @location(0) vec4<f32> {
+    return plain_lit(v, eye_colour(v.local), 0.8);
+}
+
+// Flat ground (the ring's canvas): the key and fill light the same
+// everywhere; the lamps above light it where nothing shadows it.
+@fragment
+fn fs_floor(v: VOut) -> @location(0) vec4<f32> {
+    let top = g.shadow.x * top_lit(v.world, vec3<f32>(0.0, 1.0, 0.0));
+    return vec4<f32>(inst.color.rgb * v.color.rgb * (g.floor_light.x + top), 1.0);
+}
+
+@fragment
+fn fs_skin(v: VOut) -> @location(0) vec4<f32> {
+    let view_dir = normalize(g.camera.xyz - v.world);
+    var n = normalize(v.normal);
+    if (dot(n, view_dir) < 0.0) {
+        n = -n;
+    }
+    let base = inst.color.rgb * v.color.rgb;
+    return vec4<f32>(skin(base, n, view_dir, 1.0, top_light(v.world, n, 0.45)), 1.0);
+}
+
+// Lamps, and scenery lit once on the CPU: the colour as it is.
+@fragment
+fn fs_emissive(v: VOut) -> @location(0) vec4<f32> {
+    return vec4<f32>(inst.color.rgb * v.color.rgb, 1.0);
 }
 
 struct LineOut {

@@ -76,6 +76,10 @@ pub struct FaceState {
     pub engaged: bool,
     /// Reflex blinks and the wince (F9).
     pub reflex: ReflexState,
+    /// Effort shown on the face (a tiring fighter's strained brow and
+    /// open-mouthed breathing), set each tick by the body's state and
+    /// added like `au`.
+    pub effort: AuLevels,
 }
 
 impl Default for FaceState {
@@ -91,6 +95,7 @@ impl Default for FaceState {
             offset_group: OffsetGroup::One,
             engaged: false,
             reflex: ReflexState::default(),
+            effort: AuLevels::default(),
         }
     }
 }
@@ -165,6 +170,9 @@ impl FaceState {
             .transition
             .value()
             .add(&self.au.activation(&face.params));
+        if self.effort != AuLevels::default() {
+            a = a.add(&self.effort.activation(&face.params));
+        }
         if let Some(w) = self.reflex.activation(&face.params) {
             a = a.add(&w);
         }

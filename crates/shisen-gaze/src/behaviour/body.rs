@@ -200,6 +200,71 @@ impl BodyPlan {
         self.still_since = t + p.guard_reaction + p.step_time;
     }
 
+    /// Walk to `to` (a ground point, world) a footwork step at a time,
+    /// facing the way it goes while more than a step away and then
+    /// `look` (between rounds: to the corner, then facing the ring).
+    pub fn walk_to(&mut self, p: &BehaviourParams, to: DVec3, look: DVec3, t: f64) {
+        if self.step.as_ref().is_some_and(|s| !s.done(t)) {
+            return;
+        }
+        let pelvis = at(&self.step, t);
+        let d = DVec3::new(to.x - pelvis.x, 0.0, to.z - pelvis.z);
+        let far = d.length() > p.max_step + p.range_tolerance;
+        let toward = if far { d } else { look - pelvis };
+        if toward.length() > 1e-6 {
+            self.turn_to(toward.x.atan2(toward.z), p, t);
+        }
+        if d.length() <= p.range_tolerance {
+            return;
+        }
+        let by = d.length().min(p.max_step);
+        self.step = Some(Reach {
+            from: pelvis,
+            to: pelvis + d.normalize() * by,
+            t0: t,
+            dur: p.step_time,
+            back: false,
+        });
+        self.steps += 1;
+        self.still_since = t + p.step_time;
+    }
+
+    /// Give ground from a blow: a step straight away from `from` (a
+    /// world point, the opponent), with the trunk thrown back.
+    pub fn give_ground(&mut self, p: &BehaviourParams, from: DVec3, t: f64) {
+        let pelvis = at(&self.step, t);
+        let away = DVec3::new(pelvis.x - from.x, 0.0, pelvis.z - from.z).normalize_or(DVec3::NEG_Z);
+        self.step = Some(Reach {
+            from: pelvis,
+            to: pelvis + away * p.max_step,
+            t0: t,
+            dur: p.step_time,
+            back: false,
+        });
+        self.steps += 1;
+        self.still_since = t + p.step_time;
+        self.bend_to(DVec3::new(0.0, 0.15, 0.0), t, t, 0.15);
+    }
+
+    /// Turn the body to `heading` (rad about +Y from +Z) if it is more
+    /// than the tolerance off and no turn is under way, by the shorter way.
+    fn turn_to(&mut self, heading: f64, p: &BehaviourParams, t: f64) {
+        let facing = at(&self.turn, t).x;
+        let off = (heading - facing + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+            - std::f64::consts::PI;
+        if off.abs() > p.turn_tolerance_deg.to_radians()
+            && self.turn.as_ref().is_none_or(|r| r.done(t))
+        {
+            self.turn = Some(Reach {
+                from: DVec3::new(facing, 0.0, 0.0),
+                to: DVec3::new(facing + off, 0.0, 0.0),
+                t0: t,
+                dur: p.step_time.max(off.abs() / 4.0),
+                back: false,
+            });
+        }
+    }
+
     /// Circling: once the feet have been still `circle_after` seconds in
     /// range, a step of `max_step` round the opponent, to alternate sides,
     /// kept within about a step of square to it (the turn to face

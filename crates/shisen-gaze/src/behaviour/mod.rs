@@ -156,6 +156,15 @@ pub struct BehaviourParams {
     /// Duration of one footwork step of the pelvis, s. Default 0.4.
     #[serde(deserialize_with = "move_time")]
     pub step_time: f64,
+    /// Share of punches thrown with the lead (left) glove, the jabs; the
+    /// rest are the rear hand's power punches. Default 0.5. Professionals'
+    /// jabs are 41.5 % of their punches (CompuBox averages).
+    #[serde(deserialize_with = "crate::util::check::unit_interval")]
+    pub jab_share: f64,
+    /// How far the guard's gloves sit below the stance, m (fatigue lowers
+    /// it). Default 0.
+    #[serde(deserialize_with = "guard_drop")]
+    pub guard_drop: f64,
 }
 
 crate::ranged_fields! {
@@ -166,7 +175,13 @@ crate::ranged_fields! {
     step_len: 0.0, 1.0;
     speed: 0.1, 20.0;
     turn_tolerance: 1.0, 90.0;
+    guard_drop: 0.0, 0.3;
 }
+
+/// How far the gloves come down between rounds, m (arms hanging).
+const REST_DROP: f64 = 0.3;
+/// How fast the guard's height changes, m/s.
+const DROP_RATE: f64 = 0.5;
 
 fn default_max_lunge() -> f64 {
     0.3
@@ -200,6 +215,8 @@ impl Default for BehaviourParams {
             turn_tolerance_deg: 15.0,
             circle_after: None,
             step_time: 0.4,
+            jab_share: 0.5,
+            guard_drop: 0.0,
         }
     }
 }
@@ -325,6 +342,12 @@ pub struct Behaviour {
     pub evasions: u32,
     /// The glove whose punch was last weighed for an evasion.
     considered: Option<BodyId>,
+    /// How far the guard sits below its stance now, m.
+    drop: f64,
+    /// Between rounds: the corner to stand in and the point to face.
+    corner: Option<(DVec3, DVec3)>,
+    /// Staggered by a blow (neither attacking nor defending) until, s.
+    staggered_until: f64,
 }
 
 impl Default for Behaviour {
@@ -345,7 +368,37 @@ impl Behaviour {
             punches_thrown: 0,
             evasions: 0,
             considered: None,
+            drop: 0.0,
+            corner: None,
+            staggered_until: f64::NEG_INFINITY,
         }
+    }
+
+    /// Between rounds (`Some`): go to the corner `.0` and face `.1`, the
+    /// gloves down, neither attacking nor defending; `None`: fight. `t`:
+    /// now.
+    pub fn set_corner(&mut self, corner: Option<(DVec3, DVec3)>, t: f64) {
+        if corner.is_some() && self.corner.is_none() {
+            self.plan = Plan::Idle;
+            self.lunge = None;
+            self.body.recover(t);
+        }
+        self.corner = corner;
+    }
+
+    /// Staggered by a blow at `t` until `until`: the VH gives ground from
+    /// `from` (the opponent), its actions called off.
+    pub fn stagger(&mut self, p: &BehaviourParams, from: DVec3, t: f64, until: f64) {
+        self.plan = Plan::Idle;
+        self.lunge = None;
+        self.body.give_ground(p, from, t);
+        self.staggered_until = until;
+    }
+
+    /// The guard-stance position of glove `hand` (trunk rest frame),
+    /// lowered by fatigue or the rest.
+    fn guard(&self, hand: usize) -> DVec3 {
+        self.stance[hand] - DVec3::Y * self.drop
     }
 
     /// The current action.
@@ -368,6 +421,14 @@ impl Behaviour {
         }
     }
 
+    /// The glove of the attack under way (0 left, the lead), if any.
+    pub fn attack_hand(&self) -> Option<usize> {
+        match self.plan {
+            Plan::Attack { hand, .. } => Some(hand),
+            _ => None,
+        }
+    }
+
     /// True while the VH's punch is in flight (after the telegraph).
     pub fn punching(&self) -> bool {
         matches!(self.plan, Plan::Attack { thrown: true, .. })
@@ -376,7 +437,7 @@ impl Behaviour {
     fn glove(&self, hand: usize, t: f64) -> DVec3 {
         self.reaches[hand]
             .as_ref()
-            .map_or_else(|| self.body.on_trunk(self.stance[hand]), |r| r.at(t))
+            .map_or_else(|| self.body.on_trunk(self.guard(hand)), |r| r.at(t))
     }
 
     /// Advance one tick: choose the action, return the top-down request.
@@ -406,6 +467,20 @@ impl Behaviour {
             amount: pers.a_face,
         };
         let opponent_head = view.seen.iter().find(|s| s.body == view.parts[0]);
+        let drop = p.guard_drop
+            + if self.corner.is_some() {
+                REST_DROP
+            } else {
+                0.0
+            };
+        self.drop += (drop - self.drop).clamp(-DROP_RATE * dt, DROP_RATE * dt);
+        if let Some((corner, look)) = self.corner {
+            self.body.walk_to(p, corner, look, t);
+            return face;
+        }
+        if t < self.staggered_until {
+            return face;
+        }
         if !matches!(self.plan, Plan::Attack { thrown: true, .. }) {
             self.body.keep_range(p, opponent_head, t);
         }
@@ -510,7 +585,7 @@ impl Behaviour {
                     let from = self.glove(hand, t);
                     self.reaches[hand] = Some(Reach {
                         from,
-                        to: self.stance[hand],
+                        to: self.guard(hand),
                         t0: t,
                         dur: 0.3,
                         back: false,
@@ -585,7 +660,7 @@ impl Behaviour {
             && free
             && rng.random::<f64>() < crate::util::math::poisson_step(p.attack_rate, dt)
         {
-            let hand = rng.random_range(0..2usize);
+            let hand = usize::from(rng.random::<f64>() >= p.jab_share);
             let to_body = rng.random::<f64>() < p.body_shot_share;
             return self.start_attack((hand, to_body), p, pers, view, t, rng);
         }

@@ -5,9 +5,12 @@ use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
 
+use super::opponent::Opponent;
 use crate::physics::control::Gains;
 use crate::physics::lower::BodyParams;
 use crate::physics::neck::NeckParams;
+use crate::sim::bout::BoutParams;
+use crate::sim::effort::EffortParams;
 use crate::sim::expect::Expect;
 use crate::sim::timeline::Event;
 use crate::sim::{BodySpec, Params, Profile};
@@ -24,6 +27,9 @@ pub struct VhParams {
     /// Human (default) or the seed's timing and perception; `Seed` sets
     /// the fields [`Profile::Seed`] lists, overriding values given here.
     pub profile: Profile,
+    /// A level and style of opponent; sets the fields it names over the
+    /// ones given here (`scene::opponent`).
+    pub opponent: Option<Opponent>,
     /// Attention amounts.
     pub personality: Personality,
     /// Action planner.
@@ -38,6 +44,8 @@ pub struct VhParams {
     pub neck: NeckParams,
     /// The lower body: stance, stepping, the waist's law and strength.
     pub body: BodyParams,
+    /// Effort over a bout: stamina, damage, fatigue's effects.
+    pub effort: EffortParams,
     /// The face.
     pub face: FaceConfig,
 }
@@ -45,6 +53,8 @@ pub struct VhParams {
 impl VhParams {
     /// Take a running simulation's stage parameters (not the gains, not the face).
     pub fn set_params(&mut self, p: &Params) {
+        // The parameters now say all the opponent did.
+        self.opponent = None;
         self.personality = p.personality.clone();
         self.behaviour = p.behaviour.clone();
         self.vision = p.vision.clone();
@@ -52,6 +62,7 @@ impl VhParams {
         self.oculomotor = p.oculomotor.clone();
         self.neck = p.neck.clone();
         self.body = p.body.clone();
+        self.effort = p.effort.clone();
     }
 }
 
@@ -112,6 +123,10 @@ pub struct Scene {
     /// The virtual human's parameters.
     #[serde(default)]
     pub vh: VhParams,
+    /// Rounds and rests: the run is a bout (the VH goes to its corner
+    /// in the rests).
+    #[serde(default)]
+    pub bout: Option<BoutParams>,
     /// Props.
     #[serde(default)]
     pub bodies: Vec<BodySpec>,

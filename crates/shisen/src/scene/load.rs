@@ -96,7 +96,7 @@ impl LoadedScene {
     /// The simulation model this scene describes.
     pub fn model(&self) -> Model {
         let vh = &self.scene.vh;
-        let params = Params {
+        let mut params = Params {
             gains: self.gains.clone(),
             personality: vh.personality.clone(),
             behaviour: vh.behaviour.clone(),
@@ -105,9 +105,14 @@ impl LoadedScene {
             oculomotor: vh.oculomotor.clone(),
             neck: vh.neck.clone(),
             body: vh.body.clone(),
+            effort: vh.effort.clone(),
         };
+        if let Some(o) = vh.opponent {
+            o.apply(&mut params);
+        }
         let mut model = Model {
             props: self.scene.bodies.clone(),
+            bout: self.scene.bout,
             ..Model::new(self.face.clone(), params, self.scene.seed)
         };
         model.apply_profile(vh.profile);

@@ -12,6 +12,7 @@
 
 pub mod format;
 pub mod load;
+pub mod opponent;
 pub mod validate;
 
 pub use format::{FaceConfig, Scene, VhParams};

@@ -61,6 +61,8 @@ pub struct Blow {
     pub kind: BlowKind,
     /// Who threw it.
     pub by: Fighter,
+    /// The thrower's glove: 0 its left, 1 its right.
+    pub hand: usize,
     /// The part struck (`head`, `torso`, `left_glove`, `forearm_r`...).
     pub part: &'static str,
     /// Contact impulse over the first [`WINDOW`] s, N s.
@@ -108,6 +110,8 @@ struct Episode {
 #[derive(Clone, Debug)]
 struct Pair {
     glove: BodyId,
+    /// 0: the thrower's left glove, 1: its right.
+    hand: usize,
     part: BodyId,
     by: Fighter,
     kind: BlowKind,
@@ -145,10 +149,11 @@ impl Blows {
             (Seg::ForearmL, BlowKind::Block, "forearm_l"),
             (Seg::ForearmR, BlowKind::Block, "forearm_r"),
         ];
-        for g in OpponentPart::GLOVES {
+        for (hand, g) in OpponentPart::GLOVES.into_iter().enumerate() {
             for (part, kind, name) in vh_parts {
                 pairs.push(Pair {
                     glove: world.part(g),
+                    hand,
                     part: part.body(),
                     by: Fighter::Opponent,
                     kind,
@@ -163,10 +168,11 @@ impl Blows {
             (OpponentPart::LeftGlove, BlowKind::Block),
             (OpponentPart::RightGlove, BlowKind::Block),
         ];
-        for g in [Seg::GloveL, Seg::GloveR] {
+        for (hand, g) in [Seg::GloveL, Seg::GloveR].into_iter().enumerate() {
             for (k, kind) in opp_parts {
                 pairs.push(Pair {
                     glove: g.body(),
+                    hand,
                     part: world.part(k),
                     by: Fighter::Vh,
                     kind,
@@ -249,6 +255,7 @@ impl Blows {
                     let blow = Blow {
                         kind: p.kind,
                         by: p.by,
+                        hand: p.hand,
                         part: p.name,
                         impulse: e.impulse,
                     };

@@ -9,9 +9,12 @@
 //! evolves.
 
 pub mod blows;
+pub mod bout;
+pub mod effort;
 pub mod expect;
 pub mod model;
 mod sample;
+pub mod stats;
 pub mod timeline;
 pub mod track;
 
@@ -24,7 +27,9 @@ use crate::physics::control::JointTarget;
 use crate::physics::lower::{BodyCommand, Carried, LowerBody};
 use crate::physics::neck::{self, NeckState};
 use crate::physics::world::{PropSpec, World};
-use blows::{Blow, Blows, Tally};
+use blows::{Blow, BlowKind, Blows, Fighter, Tally};
+use bout::{Bell, Phase};
+use effort::{Effort, Exertion};
 pub use model::{BodySpec, DT, Model, Params, Profile, PropShape};
 pub use sample::Sample;
 use shisen_face::FaceState;
@@ -37,6 +42,7 @@ use shisen_gaze::util::delay::DelayLine;
 use shisen_gaze::util::math::{JointAngles, angle_between, yaw_pitch_of};
 use shisen_gaze::vision::BodyId;
 use shisen_gaze::vision::{Scenery, Seen, see};
+use stats::Stats;
 use timeline::{Event, Timeline};
 use track::Track;
 
@@ -119,6 +125,14 @@ pub struct Sim {
     pub avatar: Carried,
     /// Bodies other than the VH's touching its head at the last step.
     head_touch: Vec<BodyId>,
+    /// Effort over the bout: stamina, damage, breathing.
+    pub effort: Effort,
+    /// Punch statistics, per round.
+    pub stats: Stats,
+    /// The VH's punches and evasions already counted.
+    counted: (u32, u32),
+    /// The bell rung this tick, if any.
+    bell: Option<Bell>,
     last: Option<Sample>,
 }
 
@@ -192,6 +206,10 @@ impl Sim {
             lower,
             avatar,
             head_touch: Vec::new(),
+            effort: Effort::default(),
+            stats: Stats::default(),
+            counted: (0, 0),
+            bell: None,
             last: None,
         }
     }
@@ -259,6 +277,7 @@ impl Sim {
         }
         self.neck = NeckState::default();
         self.lower = LowerBody::new(&self.model.params.body);
+        self.counted = (0, 0);
         self.resets += 1;
     }
 
@@ -274,6 +293,7 @@ impl Sim {
     /// Advance one tick and return its sample.
     pub fn step(&mut self) -> &Sample {
         let t = self.time();
+        self.referee(t);
         self.play_timeline(t);
         self.sense();
         let top_down = self.decide(t);
@@ -284,7 +304,87 @@ impl Sim {
         self.carry_avatar(t);
         let reset = self.actuate_and_integrate();
         let blows = self.resolve_contacts();
+        self.keep_score(&blows);
         self.record(&gaze, reset, blows)
+    }
+
+    /// The bout's phase at `t` (`None`: the run is no bout).
+    pub fn phase(&self, t: f64) -> Option<(Phase, f64)> {
+        self.model.bout.map(|b| b.phase_at(t))
+    }
+
+    /// The round being fought (or just fought) at `t`; 1 outside a bout.
+    fn round(&self, t: f64) -> u32 {
+        self.model.bout.map_or(1, |b| b.phase_at(t).0.round(&b))
+    }
+
+    /// Referee: the bell, and between rounds the VH sent to its corner
+    /// (it faces the ring's centre there).
+    fn referee(&mut self, t: f64) {
+        let Some(b) = self.model.bout else { return };
+        self.bell = if self.tick == 0 {
+            Some(Bell::Start(1))
+        } else {
+            bout::bell(&b, t - self.model.dt, t)
+        };
+        let fighting = b.phase_at(t).0.fighting();
+        let corner = (!fighting).then(|| (bout::vh_corner(), bout::RING_CENTRE));
+        self.behaviour.set_corner(corner, t);
+    }
+
+    /// Keep score: punches thrown and how they ended (statistics), and
+    /// what the tick cost the VH (effort, E1-E3); a hard enough blow
+    /// staggers it.
+    fn keep_score(&mut self, blows: &[Blow]) {
+        let t = self.time();
+        let round = self.round(t);
+        let b = &self.behaviour;
+        let (punches, evasions) = (
+            b.punches_thrown.saturating_sub(self.counted.0),
+            b.evasions.saturating_sub(self.counted.1),
+        );
+        self.counted = (b.punches_thrown, b.evasions);
+        if punches > 0
+            && let Some(hand) = b.attack_hand()
+        {
+            self.stats.thrown(Fighter::Vh, hand, t, round);
+        }
+        for &h in &self.timeline.thrown {
+            let hand = usize::from(h == timeline::Hand::Right);
+            self.stats.thrown(Fighter::Opponent, hand, t, round);
+        }
+        for _ in 0..evasions {
+            self.stats.evaded(round);
+        }
+        let mut x = Exertion {
+            punches,
+            evasions,
+            fighting: self.model.bout.is_none_or(|b| b.phase_at(t).0.fighting()),
+            ..Default::default()
+        };
+        for blow in blows {
+            self.stats.blow(blow, round);
+            if blow.by == Fighter::Opponent && blow.kind == BlowKind::Hit {
+                let j = f64::from(blow.impulse);
+                if blow.part == "head" {
+                    x.head = (x.head.0.max(j), x.head.1 + j);
+                } else {
+                    x.body += j;
+                }
+            }
+        }
+        self.stats.tick(t, round);
+        let p = &self.model.params;
+        if self.effort.step(&p.effort, &x, t, self.model.dt) {
+            let from = self
+                .world
+                .position(self.world.part(OpponentPart::Head))
+                .as_dvec3();
+            let tired = self.effort.behaviour(&p.effort, &p.behaviour);
+            self.behaviour
+                .stagger(&tired, from, t, self.effort.staggered_until);
+        }
+        self.face_state.effort = self.effort.face(&p.effort);
     }
 
     /// Timeline: the scene's events due now (and live input's), then the
@@ -323,8 +423,10 @@ impl Sim {
             vh_points: [head_c, torso_c, (head_c + torso_c) / 2.0],
         };
         let p = &self.model.params;
+        // E2: the planner works with what fatigue leaves of its parameters.
+        let tired = self.effort.behaviour(&p.effort, &p.behaviour);
         let top_down = self.behaviour.step(
-            &p.behaviour,
+            &tired,
             &p.personality,
             &view,
             t,
@@ -410,9 +512,11 @@ impl Sim {
                 .filter(|s| t < s.until)
                 .map(|s| s.command(t + dt)),
         };
+        // E2: fatigue slows the saccades.
+        let tired = self.effort.oculomotor(&p.effort, &p.oculomotor);
         let out = self
             .oculomotor
-            .step(&p.oculomotor, &input, t, dt, &mut self.rng.oculomotor);
+            .step(&tired, &input, t, dt, &mut self.rng.oculomotor);
         for (s, e) in Seg::EYES.into_iter().zip(out.eyes) {
             self.targets[s.index()] = JointTarget::yaw_pitch(e.angles, e.rates, e.accel);
         }
@@ -711,6 +815,10 @@ impl Sim {
             blink: self.face_state.blink.closure(&self.model.face.params.blink),
             reset: false,
             blows: Vec::new(),
+            phase: self.phase(self.time()).map(|p| p.0),
+            bell: self.bell,
+            fatigue: self.effort.fatigue(&self.model.params.effort),
+            staggered: self.effort.staggered(self.time()),
         }
     }
 }

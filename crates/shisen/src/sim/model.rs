@@ -14,6 +14,8 @@ use std::sync::Arc;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
+use super::bout::BoutParams;
+use super::effort::EffortParams;
 use crate::physics::body::BodyPlan;
 use crate::physics::control::Gains;
 use crate::physics::lower::BodyParams;
@@ -50,6 +52,8 @@ pub struct Params {
     pub neck: NeckParams,
     /// The lower body: stance, stepping, the waist.
     pub body: BodyParams,
+    /// Effort over a bout: stamina, damage, what they change.
+    pub effort: EffortParams,
 }
 
 /// Which defaults the VH's timing and perception follow (scene
@@ -85,6 +89,7 @@ impl Params {
             self.behaviour.footwork = false;
             self.personality.evade = 0.0;
             self.personality.counter = 0.0;
+            self.effort.on = false;
         }
     }
 }
@@ -104,6 +109,8 @@ pub struct Model {
     pub face: Arc<Face>,
     /// The stages' parameters (live-editable).
     pub params: Params,
+    /// Rounds and rests, if the run is a bout (scene `bout`).
+    pub bout: Option<BoutParams>,
 }
 
 impl Model {
@@ -150,6 +157,7 @@ impl Model {
             props: Vec::new(),
             face,
             params,
+            bout: None,
         }
     }
 }

@@ -4,6 +4,7 @@
 use glam::{DVec2, DVec3};
 
 use super::blows::Blow;
+use super::bout::{Bell, Phase};
 use shisen_face::tables::Emotion;
 use shisen_gaze::attention::Source;
 use shisen_gaze::behaviour::ActionKind;
@@ -71,4 +72,12 @@ pub struct Sample {
     pub reset: bool,
     /// Blows (hits and blocks, both ways) decided this tick.
     pub blows: Vec<Blow>,
+    /// Where the bout is (`None`: the run is no bout).
+    pub phase: Option<Phase>,
+    /// The bell rung this tick.
+    pub bell: Option<Bell>,
+    /// The VH's fatigue, 0 fresh to 1 exhausted (E1).
+    pub fatigue: f64,
+    /// Whether a blow has it staggered.
+    pub staggered: bool,
 }

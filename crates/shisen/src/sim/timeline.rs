@@ -317,6 +317,8 @@ pub struct Timeline {
     pub(super) occluded: [bool; 2],
     /// The imposed neck motion, if any.
     pub(super) shake: Option<Shake>,
+    /// The opponent's punches started in the last `run`.
+    pub(super) thrown: Vec<Hand>,
 }
 
 impl Timeline {
@@ -335,6 +337,7 @@ impl Timeline {
             look_at: None,
             occluded: [false; 2],
             shake: None,
+            thrown: Vec::new(),
         }
     }
 
@@ -390,6 +393,7 @@ impl Timeline {
 
     /// Run every event due by `t`, in time order.
     pub fn run(&mut self, t: f64, world: &World, face: &Face, face_state: &mut FaceState) {
+        self.thrown.clear();
         while self.next < self.events.len() && self.events[self.next].at <= t + 1e-12 {
             let ev = self.events[self.next].clone();
             self.next += 1;
@@ -417,6 +421,7 @@ impl Timeline {
                     speed,
                     through,
                 } => {
+                    self.thrown.push(hand);
                     let through = through.unwrap_or(FOLLOW_THROUGH);
                     let glove_r = world.plan.glove_radius as f64;
                     // Aimed through the target (follow-through):

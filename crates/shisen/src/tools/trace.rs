@@ -10,6 +10,7 @@ use std::io::{self, Write};
 
 use crate::sim::Sample;
 use crate::sim::blows::BlowKind;
+use crate::sim::bout::Phase;
 
 /// How a column's cell is read from a sample.
 #[derive(Clone, Copy)]
@@ -121,6 +122,19 @@ pub const COLUMNS: &[(&str, Cell)] = &[
     ),
     ("blink", num(|s| s.blink)),
     ("reset", yes(|s| flag(s.reset))),
+    (
+        "round",
+        yes(|s| match s.phase {
+            Some(Phase::Round(n) | Phase::Rest(n)) => f64::from(n),
+            Some(Phase::Over) | None => 0.0,
+        }),
+    ),
+    (
+        "resting",
+        yes(|s| flag(matches!(s.phase, Some(Phase::Rest(_))))),
+    ),
+    ("fatigue", Cell::Num(|s| s.fatigue, 3)),
+    ("staggered", yes(|s| flag(s.staggered))),
     ("salient_1", Cell::Text(|s, o| top(o, s, 0))),
     ("salient_2", Cell::Text(|s, o| top(o, s, 1))),
     ("salient_3", Cell::Text(|s, o| top(o, s, 2))),

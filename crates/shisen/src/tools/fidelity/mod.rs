@@ -58,6 +58,17 @@ fn run(model: &Model, dot: DVec3, timeline: &[Event], duration: f64) -> Vec<Samp
 
 /// [`run`], also returning the simulation at its end.
 fn run_sim(model: &Model, dot: DVec3, timeline: &[Event], duration: f64) -> (Vec<Sample>, Sim) {
+    run_from(model, dot, timeline, duration, |_| {})
+}
+
+/// [`run_sim`] from a start `prepare` sets (a tired VH).
+fn run_from(
+    model: &Model,
+    dot: DVec3,
+    timeline: &[Event],
+    duration: f64,
+    prepare: impl FnOnce(&mut Sim),
+) -> (Vec<Sample>, Sim) {
     let mut m = model.clone();
     m.props.push(BodySpec {
         name: "dot".into(),
@@ -70,6 +81,7 @@ fn run_sim(model: &Model, dot: DVec3, timeline: &[Event], duration: f64) -> (Vec
         gravity: false,
     });
     let mut sim = Sim::new(m, timeline);
+    prepare(&mut sim);
     let mut out = Vec::with_capacity((duration / sim.model().dt) as usize);
     while sim.time() < duration - 1e-9 {
         out.push(sim.step().clone());
@@ -177,46 +189,54 @@ pub fn battery(model: &Model) -> (Vec<Row>, Curves) {
 
 const MAIN_SEQ: &str = "Carpenter 1988: D = 21 ms + 2.2 ms/deg, +-25 % across people";
 
+/// The first saccade of `amp` degrees to a dot 1 m away, by a VH of this
+/// `stamina` (1 fresh): its duration (ms) and peak velocity (deg/s).
+fn saccade(model: &Model, amp: f64, stamina: f64) -> (f64, f64) {
+    let tl = [
+        hold_head(2.0),
+        at(
+            0.0,
+            Action::LookAt {
+                point: point(0.0, 1.0),
+                until: 0.5,
+                amount: None,
+                style: None,
+            },
+        ),
+        at(
+            0.5,
+            Action::LookAt {
+                point: point(amp, 1.0),
+                until: 2.0,
+                amount: None,
+                style: None,
+            },
+        ),
+    ];
+    let (s, _) = run_from(model, point(0.0, 30.0), &tl, 1.5, |sim| {
+        sim.effort.stamina = stamina;
+    });
+    let v = eye_velocity(&s);
+    let moving: Vec<usize> = (0..s.len())
+        .filter(|&i| s[i].t > 0.5 && v[i] > 30.0)
+        .collect();
+    match (moving.first(), moving.last()) {
+        (Some(&a), Some(&b)) => {
+            // The first movement only: stop at the first gap.
+            let end = moving
+                .windows(2)
+                .find(|w| w[1] != w[0] + 1)
+                .map_or(b, |w| w[0]);
+            let peak = v[a..=end].iter().cloned().fold(0.0, f64::max);
+            ((s[end].t - s[a].t) * 1e3 + 1.0, peak)
+        }
+        _ => (f64::NAN, f64::NAN),
+    }
+}
+
 fn main_sequence(model: &Model, rows: &mut Vec<Row>, curves: &mut Curves) {
     for amp in [5.0, 10.0, 20.0, 40.0] {
-        let tl = [
-            hold_head(2.0),
-            at(
-                0.0,
-                Action::LookAt {
-                    point: point(0.0, 1.0),
-                    until: 0.5,
-                    amount: None,
-                    style: None,
-                },
-            ),
-            at(
-                0.5,
-                Action::LookAt {
-                    point: point(amp, 1.0),
-                    until: 2.0,
-                    amount: None,
-                    style: None,
-                },
-            ),
-        ];
-        let s = run(model, point(0.0, 30.0), &tl, 1.5);
-        let v = eye_velocity(&s);
-        let moving: Vec<usize> = (0..s.len())
-            .filter(|&i| s[i].t > 0.5 && v[i] > 30.0)
-            .collect();
-        let (dur, peak) = match (moving.first(), moving.last()) {
-            (Some(&a), Some(&b)) => {
-                // The first movement only: stop at the first gap.
-                let end = moving
-                    .windows(2)
-                    .find(|w| w[1] != w[0] + 1)
-                    .map_or(b, |w| w[0]);
-                let peak = v[a..=end].iter().cloned().fold(0.0, f64::max);
-                ((s[end].t - s[a].t) * 1e3 + 1.0, peak)
-            }
-            _ => (f64::NAN, f64::NAN),
-        };
+        let (dur, peak) = saccade(model, amp, 1.0);
         let nominal = 21.0 + 2.2 * amp;
         let band = (0.75 * nominal, 1.25 * nominal);
         curves.main_sequence.push((amp, dur, band.0, band.1));
@@ -244,6 +264,17 @@ fn main_sequence(model: &Model, rows: &mut Vec<Row>, curves: &mut Curves) {
             source: "Bahill, Clark & Stark 1975, Math. Biosci. 24:191 (normal main sequence)",
         });
     }
+    // Effort (docs/model/effort.md E2): the same 20-deg saccade by a VH
+    // whose stamina is spent, against a fresh one.
+    let fresh = saccade(model, 20.0, 1.0).1;
+    let spent = saccade(model, 20.0, 0.0).1;
+    rows.push(Row {
+        name: "saccade peak velocity exhausted / fresh, 20 deg".into(),
+        value: spent / fresh,
+        band: (0.85, 0.97),
+        unit: "ratio",
+        source: "Connell et al. 2016, Sci. Rep. 6:26614: -8 % after 3 h of exhausting cycling (band: that mean +-4 %, a significant fall)",
+    });
 }
 
 fn reaction_time(model: &Model, rows: &mut Vec<Row>) {
