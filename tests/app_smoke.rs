@@ -95,3 +95,117 @@ fn mouse_and_keyboard_drive_your_avatar() {
         assert!(log.contains(want), "no {want:?} event in the log:\n{log}");
     }
 }
+
+/// A short bout played through the real window with xdotool: two rounds
+/// of 6 s with 3 s between, against a novice; your punches thrown with
+/// the keys (F, J) while the pointer rests over the VH. The statistics
+/// the app writes at each bell (`--stats`) show your punches thrown in
+/// round 1 and more by the end, punches landing, and both bells that end
+/// the rounds; then the menu (Esc) quits (Q) and the app exits 0.
+#[test]
+#[ignore = "needs an X display and xdotool, and takes over the keyboard: run under xvfb-run"]
+fn a_short_bout_through_the_bell_counts_punches_and_quits_from_the_menu() {
+    use std::time::{Duration, Instant};
+    assert_display();
+    let dir = std::env::temp_dir().join(format!("shisen-bout-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (stats, log) = (dir.join("stats.json"), dir.join("log.txt"));
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shisen"))
+        .args([
+            "--opponent",
+            "novice",
+            "--rounds",
+            "2",
+            "--round-length",
+            "6",
+        ])
+        .args(["--rest", "3", "--exit-after", "240", "--stats"])
+        .arg(&stats)
+        .env("RUST_LOG", "shisen=info")
+        .stderr(std::fs::File::create(&log).unwrap())
+        .spawn()
+        .expect("start shisen");
+    let xdo = |args: &[&str]| {
+        let _ = Command::new("xdotool").args(args).status();
+    };
+    let started = Instant::now();
+    while Command::new("xdotool")
+        .args(["search", "--name", "shisen"])
+        .output()
+        .expect("xdotool")
+        .stdout
+        .is_empty()
+    {
+        assert!(
+            started.elapsed() < Duration::from_secs(20),
+            "window never appeared"
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    std::thread::sleep(Duration::from_millis(1500));
+    xdo(&["search", "--name", "shisen", "windowfocus"]);
+    xdo(&["mousemove", "640", "330"]);
+    let rang = |n: u32| {
+        std::fs::read_to_string(&log)
+            .unwrap_or_default()
+            .contains(&format!("bell=End({n})"))
+    };
+    let read_stats = || -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(&stats).expect("stats written"))
+            .expect("stats are JSON")
+    };
+    let thrown = |v: &serde_json::Value, who: &str| {
+        v[who]["jabs"]["thrown"].as_u64().unwrap() + v[who]["power"]["thrown"].as_u64().unwrap()
+    };
+    let landed = |v: &serde_json::Value, who: &str| {
+        v[who]["jabs"]["landed"].as_u64().unwrap() + v[who]["power"]["landed"].as_u64().unwrap()
+    };
+    // Punch, left and right, until the bell ends round 1, then round 2
+    // (the simulation may run slower than the wall clock in a debug build).
+    let mut after_round_1 = None;
+    let mut keys = ["f", "j"].iter().cycle();
+    while !rang(2) {
+        assert!(
+            started.elapsed() < Duration::from_secs(200),
+            "the bell never ended round 2; log:\n{}",
+            std::fs::read_to_string(&log).unwrap_or_default()
+        );
+        xdo(&["key", keys.next().unwrap()]);
+        std::thread::sleep(Duration::from_millis(350));
+        if after_round_1.is_none() && rang(1) {
+            after_round_1 = Some(read_stats());
+        }
+    }
+    let round_1 = after_round_1.expect("the bell ended round 1 before round 2");
+    assert!(
+        thrown(&round_1["total"], "you") > 0,
+        "no punch of yours counted in round 1: {round_1}"
+    );
+    let end = read_stats();
+    assert_eq!(end["rounds"].as_array().unwrap().len(), 2, "{end}");
+    assert!(
+        thrown(&end["total"], "you") > thrown(&round_1["total"], "you"),
+        "your punches in round 2 were not counted: {round_1} -> {end}"
+    );
+    assert!(
+        landed(&end["total"], "you") + landed(&end["total"], "vh") > 0,
+        "no punch landed in the bout: {end}"
+    );
+    // The menu quits.
+    xdo(&["key", "Escape"]);
+    std::thread::sleep(Duration::from_millis(800));
+    xdo(&["key", "q"]);
+    let quit = Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        assert!(
+            quit.elapsed() < Duration::from_secs(20),
+            "Q in the menu did not quit"
+        );
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    assert!(status.success(), "exit {status:?}");
+    let _ = std::fs::remove_dir_all(dir);
+}

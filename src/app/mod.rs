@@ -134,6 +134,8 @@ struct ShisenApp {
     last: Instant,
     frames: FrameClock,
     bout_ui: BoutUi,
+    /// Bells already announced (logged, statistics written).
+    bells: usize,
     /// The report's PNG being taken: the path and egui's screenshot.
     report_shot: Option<(PathBuf, Shot)>,
     shot: Option<Shot>,
@@ -211,6 +213,7 @@ pub fn run(opts: AppOptions) -> anyhow::Result<()> {
                 last: Instant::now(),
                 frames: FrameClock::default(),
                 bout_ui,
+                bells: 0,
                 report_shot: None,
                 shot: None,
                 failure: fail,
@@ -279,6 +282,24 @@ impl ShisenApp {
             Err(e) => format!("{e:#}"),
         });
         self.report_shot = None;
+    }
+
+    /// Each new bell: logged, and the statistics written (`--stats`), so
+    /// what a round came to is on disk when the next starts.
+    fn announce_bells(&mut self) {
+        let bells = &self.session.log.bells;
+        if bells.len() < self.bells {
+            // A restart: a new bout.
+            self.bells = 0;
+        }
+        if bells.len() == self.bells {
+            return;
+        }
+        for (t, b) in &bells[self.bells..] {
+            tracing::info!(t, bell = ?b, "bell");
+        }
+        self.bells = bells.len();
+        self.write_stats();
     }
 
     /// `--stats FILE`: the bout's statistics, per round and in total (JSON).
@@ -430,6 +451,7 @@ impl eframe::App for ShisenApp {
             r.advance(wall.min(MAX_REPLAY_STEP));
         }
         let sim_ms = sim_started.elapsed().as_secs_f32() * 1e3;
+        self.announce_bells();
 
         let Some(viewport) = self.viewport.as_mut() else {
             return;

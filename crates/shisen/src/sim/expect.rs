@@ -297,6 +297,22 @@ pub enum Expect {
         #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
         to: f64,
     },
+    /// The VH's fatigue (E1, 0 fresh to 1 exhausted) stays within
+    /// [at_least, at_most] throughout [from, to].
+    Fatigue {
+        /// Least fatigue.
+        #[serde(deserialize_with = "shisen_gaze::util::check::unit_interval")]
+        at_least: f64,
+        /// Most fatigue.
+        #[serde(deserialize_with = "shisen_gaze::util::check::unit_interval")]
+        at_most: f64,
+        /// Window start, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        from: f64,
+        /// Window end, s.
+        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        to: f64,
+    },
     /// Every state value stays finite for the whole run.
     Finite,
 }
@@ -357,6 +373,7 @@ impl Expect {
             | Expect::LineOfSightReaches { from, to, .. }
             | Expect::Evades { from, to, .. }
             | Expect::Range { from, to, .. }
+            | Expect::Fatigue { from, to, .. }
             | Expect::ActionShare { from, to, .. } => Some((*from, *to)),
             Expect::AngleBelow { from, to, .. } => {
                 Some((from.unwrap_or(0.0), to.unwrap_or(duration)))
@@ -547,11 +564,15 @@ impl Checker {
                         _ => {}
                     }
                 }
-                Expect::Range { from, to, .. } => {
+                Expect::Range { from, to, .. } | Expect::Fatigue { from, to, .. } => {
                     if inside(s.t, *from, *to) {
+                        let v = match e {
+                            Expect::Range { .. } => s.range,
+                            _ => s.fatigue,
+                        };
                         a.n += 1;
-                        a.max = a.max.max(s.range);
-                        a.min = Some(a.min.map_or(s.range, |m: f64| m.min(s.range)));
+                        a.max = a.max.max(v);
+                        a.min = Some(a.min.map_or(v, |m: f64| m.min(v)));
                     }
                 }
                 Expect::Finite => {
@@ -810,6 +831,22 @@ fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
             Verdict {
                 what: format!("the range stays in [{at_least}, {at_most}] m in [{from}, {to}] s"),
                 measured: format!("{lo:.3}-{:.3} m", a.max),
+                value: a.max,
+                pass: a.n > 0 && lo >= *at_least && a.max <= *at_most,
+            }
+        }
+        Expect::Fatigue {
+            at_least,
+            at_most,
+            from,
+            to,
+        } => {
+            let lo = a.min.unwrap_or(f64::NAN);
+            Verdict {
+                what: format!(
+                    "the VH's fatigue stays in [{at_least}, {at_most}] in [{from}, {to}] s"
+                ),
+                measured: format!("{lo:.3}-{:.3}", a.max),
                 value: a.max,
                 pass: a.n > 0 && lo >= *at_least && a.max <= *at_most,
             }
