@@ -238,7 +238,7 @@ pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session) {
             (Fighter::Vh, BlowKind::Block) => ("you blocked it".to_string(), Color32::GRAY),
         };
         p.text(
-            box_.center_bottom() + vec2(0.0, h * 0.01),
+            box_.center_bottom() + vec2(0.0, h * 0.075),
             Align2::CENTER_TOP,
             format!("{what}  {:.0} N s", b.impulse),
             mid.clone(),
@@ -263,14 +263,19 @@ pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session) {
             Color32::WHITE,
         );
     }
-    // Keys, bottom left.
-    p.text(
-        rect.left_bottom() + vec2(h * 0.015, -h * 0.015),
-        Align2::LEFT_BOTTOM,
-        "Esc menu   F2 report   F6 replay   F3 figures   V view",
+    // Keys, bottom left, on a dark band (the canvas behind is light).
+    let keys = p.layout_no_wrap(
+        "Esc menu   F2 report   F6 replay   F3 figures   V view".to_string(),
         small,
-        Color32::from_gray(170),
+        Color32::from_gray(210),
     );
+    let at = rect.left_bottom() + vec2(h * 0.015, -h * 0.015 - keys.size().y);
+    p.rect_filled(
+        Rect::from_min_size(at - vec2(6.0, 3.0), keys.size() + vec2(12.0, 6.0)),
+        4.0,
+        PANEL,
+    );
+    p.galley(at, keys, Color32::from_gray(210));
 }
 
 fn part(name: &str) -> &str {
@@ -330,7 +335,8 @@ pub fn menu(ctx: &egui::Context, st: &mut BoutUi, s: &mut Session) -> Option<Men
     let mut action = None;
     let (enter, quit) =
         ctx.input(|i| (i.key_pressed(egui::Key::Enter), i.key_pressed(egui::Key::Q)));
-    egui::Window::new(RichText::new("shisen 視線").size(24.0))
+    // (The default fonts have no CJK glyphs: the window's title has 視線.)
+    egui::Window::new(RichText::new("shisen").size(24.0))
         .anchor(Align2::CENTER_CENTER, vec2(0.0, 0.0))
         .collapsible(false)
         .resizable(false)
@@ -440,7 +446,11 @@ pub fn report(ctx: &egui::Context, st: &mut BoutUi, s: &Session) {
                         }
                     });
                 if let Some(o) = s.loaded.scene.vh.opponent {
-                    ui.label(format!("against a {o}"));
+                    ui.label(format!(
+                        "the VH: {} {}",
+                        o.level.name(),
+                        o.style.name()
+                    ));
                 }
             });
             let card = if round == 0 {
@@ -562,7 +572,7 @@ fn timeline(ui: &mut egui::Ui, s: &Session, from: f64, to: f64) {
             format!(
                 "{} {:.0}%",
                 l.name(),
-                100.0 * log.looks.share(from, to, l) / span
+                (100.0 * log.looks.share(from, to, l) / span).max(0.0)
             )
         })
         .collect();
@@ -647,7 +657,7 @@ fn timeline(ui: &mut egui::Ui, s: &Session, from: f64, to: f64) {
     );
     ui.horizontal_wrapped(|ui| {
         for l in Look::ALL {
-            ui.colored_label(look_color(l), format!("■ {}", l.name()));
+            ui.colored_label(look_color(l), l.name());
         }
         ui.separator();
         for (name, a) in [
@@ -655,7 +665,7 @@ fn timeline(ui: &mut egui::Ui, s: &Session, from: f64, to: f64) {
             ("attack", ActionKind::Attack),
             ("evade", ActionKind::Slip),
         ] {
-            ui.colored_label(action_color(a).expect("coloured"), format!("■ {name}"));
+            ui.colored_label(action_color(a).expect("coloured"), name);
         }
         ui.separator();
         ui.colored_label(YOU, "| your hits");

@@ -284,18 +284,6 @@ impl Effort {
         au.set(ActionUnit::Au26, hard * (0.15 + 0.35 * inhale));
         au
     }
-
-    /// How far the chest and shoulders rise with the breath now, m (for
-    /// the renderer): up to 6 mm at rest, 15 mm when blowing hard.
-    pub fn chest_rise(&self, p: &EffortParams) -> f64 {
-        if !p.on {
-            return 0.0;
-        }
-        let [rest, most] = p.breathing;
-        let hard = ((self.breath_rate - rest) / (most - rest).max(1e-9)).clamp(0.0, 1.0);
-        let inhale = 0.5 - 0.5 * (std::f64::consts::TAU * self.breath).cos();
-        (0.006 + 0.009 * hard) * inhale
-    }
 }
 
 #[cfg(test)]
