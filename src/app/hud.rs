@@ -144,7 +144,7 @@ pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session) {
     // The fighters' punches, either side of the clock.
     let side = |f: &FighterStats, name: &str, color: Color32, left: bool| {
         let lines = [
-            (format!("{name}"), mid.clone(), color),
+            (name.to_string(), mid.clone(), color),
             (
                 format!("landed {}", f.total().show()),
                 mid.clone(),
@@ -446,11 +446,7 @@ pub fn report(ctx: &egui::Context, st: &mut BoutUi, s: &Session) {
                         }
                     });
                 if let Some(o) = s.loaded.scene.vh.opponent {
-                    ui.label(format!(
-                        "the VH: {} {}",
-                        o.level.name(),
-                        o.style.name()
-                    ));
+                    ui.label(format!("the VH: {} {}", o.level.name(), o.style.name()));
                 }
             });
             let card = if round == 0 {

@@ -296,7 +296,7 @@ mod tests {
         for i in 0..n {
             let mut x = x;
             // One punch every 3 s (a pro throws 55.6 a round).
-            x.punches = u32::from(i % 3000 == 0) * x.punches;
+            x.punches *= u32::from(i % 3000 == 0);
             e.step(p, &x, i as f64 * dt, dt);
         }
     }
