@@ -297,6 +297,13 @@ impl ShisenApp {
         }
         for (t, b) in &bells[self.bells..] {
             tracing::info!(t, bell = ?b, "bell");
+            // The round's report for the rest after it; the next round
+            // starts without it.
+            match b {
+                shisen::sim::bout::Bell::End(n) => self.bout_ui.report = Some(*n),
+                shisen::sim::bout::Bell::Start(n) if *n > 1 => self.bout_ui.report = None,
+                shisen::sim::bout::Bell::Start(_) => {}
+            }
         }
         self.bells = bells.len();
         self.write_stats();
