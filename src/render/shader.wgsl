@@ -80,6 +80,10 @@ fn top_lit(world: vec3<f32>, n: vec3<f32>) -> f32 {
     return textureSampleCompareLevel(shadow_map, shadow_sampler, uv, p.z);
 }
 
+// Skin takes half the lamps' light, unwrapped: the face is modelled by the
+// key and fill, and light from straight above would flatten it.
+const SKIN_TOP: f32 = 0.5;
+
 // The top light on a surface of normal `n`: wrapped by `wrap` (skin), and
 // shadowed.
 fn top_light(world: vec3<f32>, n: vec3<f32>, wrap: f32) -> f32 {
@@ -183,7 +187,7 @@ fn fs_body(v: PaintedOut) -> @location(0) vec4<f32> {
     let n = normalize(v.normal);
     let aa = max(fwidth(v.paint.x), 1.0);
     let base = mix(inst.color.rgb * v.color.rgb, v.paint.yzw, smoothstep(-aa, aa, v.paint.x));
-    return vec4<f32>(skin(base, n, view_dir, 1.0, top_light(v.world, n, 0.45)), 1.0);
+    return vec4<f32>(skin(base, n, view_dir, 1.0, SKIN_TOP * top_light(v.world, n, 0.0)), 1.0);
 }
 
 // The face: skin with its painted borders and expression wrinkles.
@@ -247,7 +251,7 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
             min(v.wrinkle.y, 1.0) * mix(0.375, vy, ry),
         );
     }
-    let top = top_light(v.world, normalize(v.normal), 0.45);
+    let top = SKIN_TOP * top_light(v.world, normalize(v.normal), 0.0);
     return vec4<f32>(skin(base, n, view_dir, (1.0 - 0.33 * furrow) * tilt, top), 1.0);
 }
 
@@ -313,7 +317,7 @@ fn fs_skin(v: VOut) -> @location(0) vec4<f32> {
         n = -n;
     }
     let base = inst.color.rgb * v.color.rgb;
-    return vec4<f32>(skin(base, n, view_dir, 1.0, top_light(v.world, n, 0.45)), 1.0);
+    return vec4<f32>(skin(base, n, view_dir, 1.0, SKIN_TOP * top_light(v.world, n, 0.0)), 1.0);
 }
 
 // Lamps, and scenery lit once on the CPU: the colour as it is.
