@@ -152,11 +152,14 @@ pub struct Replay {
     pub playing: bool,
     /// The length of what was recorded, s.
     pub length: f64,
+    /// Whether the bout was paused before the replay (it is again after).
+    pub bout_paused: bool,
 }
 
 impl Replay {
-    /// A replay of `events` on `loaded`, `length` seconds long.
-    pub fn new(loaded: LoadedScene, events: Vec<Event>, length: f64) -> Replay {
+    /// A replay of `events` on `loaded`, `length` seconds long, of a bout
+    /// that was paused (`bout_paused`) or running.
+    pub fn new(bout_paused: bool, loaded: LoadedScene, events: Vec<Event>, length: f64) -> Replay {
         let sim = Self::start(&loaded, &events);
         Replay {
             loaded,
@@ -165,6 +168,7 @@ impl Replay {
             target: 0.0,
             playing: true,
             length,
+            bout_paused,
         }
     }
 
@@ -225,7 +229,7 @@ mod tests {
         for _ in 0..300 {
             live.step();
         }
-        let mut r = Replay::new(loaded, Vec::new(), 0.3);
+        let mut r = Replay::new(false, loaded, Vec::new(), 0.3);
         r.playing = false;
         r.target = 0.3;
         r.advance(0.0);

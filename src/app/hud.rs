@@ -398,8 +398,10 @@ pub fn menu(ctx: &egui::Context, st: &mut BoutUi, s: &mut Session) -> Option<Men
                     st.toggle_report(s);
                 }
                 if ui.button(text("Replay (F6)")).clicked() {
+                    // Close the menu first (its pause lifted), so the bout
+                    // runs again when the replay ends.
+                    st.toggle_menu(s);
                     s.toggle_replay();
-                    st.menu = false;
                 }
                 if ui.button(text("Quit (Q)")).clicked() || quit {
                     action = Some(MenuAction::Quit);
@@ -445,7 +447,7 @@ pub fn report(ctx: &egui::Context, st: &mut BoutUi, s: &Session) {
                             ui.selectable_value(&mut round, n, n.to_string());
                         }
                     });
-                if let Some(o) = s.loaded.scene.vh.opponent {
+                if let Some(o) = s.opponent {
                     ui.label(format!("the VH: {} {}", o.level.name(), o.style.name()));
                 }
             });
@@ -700,6 +702,6 @@ pub fn replay_bar(ui: &mut egui::Ui, s: &mut Session) {
         });
     }
     if close {
-        s.replay = None;
+        s.toggle_replay();
     }
 }

@@ -314,7 +314,7 @@ impl ShisenApp {
         let Some(path) = &self.opts.stats else { return };
         let stats = &self.session.sim.stats;
         let json = serde_json::json!({
-            "opponent": self.session.loaded.scene.vh.opponent.map(|o| o.to_string()),
+            "opponent": self.session.opponent.map(|o| o.to_string()),
             "time": self.session.sim.time(),
             "rounds": stats.rounds,
             "total": stats.total(),

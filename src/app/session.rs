@@ -115,6 +115,9 @@ pub struct Session {
     pub history: VecDeque<Sample>,
     /// Recording in progress.
     pub recorder: Option<Recorder>,
+    /// The opponent the VH plays (kept across restarts, which carry its
+    /// parameters over as the VH's own), for labels.
+    pub opponent: Option<Opponent>,
     /// The bout so far, for the round report.
     pub log: BoutLog,
     /// Your input since the start, for replays.
@@ -128,6 +131,7 @@ impl Session {
     /// A session on `loaded` (from `source`), at time 0.
     pub fn new(loaded: LoadedScene, source: SceneSource) -> Self {
         let sim = loaded.sim();
+        let loaded_opponent = loaded.scene.vh.opponent;
         Session {
             control: OpponentControl::new(&sim.world.plan),
             sim,
@@ -137,6 +141,7 @@ impl Session {
             last_blow: None,
             history: VecDeque::new(),
             recorder: None,
+            opponent: loaded_opponent,
             log: BoutLog::default(),
             events: Vec::new(),
             replay: None,
@@ -150,16 +155,20 @@ impl Session {
         self.loaded.scene.vh.opponent = opponent;
         self.loaded.scene.bout = bout;
         self.reset(false);
+        self.opponent = opponent;
     }
 
     /// Watch the bout so far from its start (pausing it), or stop
     /// watching.
     pub fn toggle_replay(&mut self) {
-        if self.replay.take().is_some() {
+        if let Some(r) = self.replay.take() {
+            self.clock.paused = r.bout_paused;
             return;
         }
+        let bout_paused = self.clock.paused;
         self.clock.paused = true;
         self.replay = Some(Replay::new(
+            bout_paused,
             self.loaded.clone(),
             self.events.clone(),
             self.sim.time(),
@@ -182,12 +191,14 @@ impl Session {
         }
         let reach = self.control.reach;
         let clock = self.clock;
+        let opponent = self.opponent;
         *self = Session {
             trace: self.trace.take(),
             ..Session::new(loaded, self.source.clone())
         };
         self.control.reach = reach;
         self.clock = clock;
+        self.opponent = opponent;
     }
 
     /// Replace the scene (the old one stays if this fails).

@@ -808,7 +808,8 @@ impl Renderer {
         // The shader's plain lighting (ambient 0.22, key 0.85, fill 0.35)
         // on the floor's upward normal.
         let floor_light = 0.22 + 0.85 * (-key.y).max(0.0) + 0.35 * (-fill.y).max(0.0);
-        let redo_shadow = self.shadow_light.is_none() || self.frames.is_multiple_of(self.shadow_every);
+        let redo_shadow =
+            self.shadow_light.is_none() || self.frames.is_multiple_of(self.shadow_every);
         self.frames += 1;
         if redo_shadow {
             self.shadow_light = Some(shadow_frustum(frame.shadow_focus, self.shadow_size));
