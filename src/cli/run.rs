@@ -323,6 +323,10 @@ pub fn soak_cmd(minutes: f64, seed: u64, force: bool) -> Result<bool> {
         "  the VH's body: {} evasions, {} footwork moves, {} foot steps; its pelvis at most {:.2} m from where it started",
         r.evasions, r.steps.0, r.steps.1, r.farthest
     );
+    println!(
+        "  effort: staggered {} times, fatigue {:.2} at the end",
+        r.staggers.0, r.staggers.1
+    );
     let t = &r.tally;
     println!(
         "  blows: the opponent landed {} hits ({} blocked, {} punches stopped dead by the VH's guard), the VH {} ({} blocked)",

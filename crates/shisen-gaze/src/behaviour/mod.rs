@@ -378,9 +378,11 @@ impl Behaviour {
     /// gloves down, neither attacking nor defending; `None`: fight. `t`:
     /// now.
     pub fn set_corner(&mut self, corner: Option<(DVec3, DVec3)>, t: f64) {
+        // A lunge under way runs its course, out and back: the trunk rides
+        // on it, and cutting it short would move the physics' root in one
+        // tick.
         if corner.is_some() && self.corner.is_none() {
             self.plan = Plan::Idle;
-            self.lunge = None;
             self.body.recover(t);
         }
         self.corner = corner;
@@ -390,7 +392,6 @@ impl Behaviour {
     /// `from` (the opponent), its actions called off.
     pub fn stagger(&mut self, p: &BehaviourParams, from: DVec3, t: f64, until: f64) {
         self.plan = Plan::Idle;
-        self.lunge = None;
         self.body.give_ground(p, from, t);
         self.staggered_until = until;
     }

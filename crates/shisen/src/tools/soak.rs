@@ -180,6 +180,8 @@ pub struct SoakReport {
     pub steps: (u32, u32),
     /// Farthest the VH's pelvis got from where it started, m.
     pub farthest: f64,
+    /// Times a blow staggered the VH, and its fatigue at the end (E1).
+    pub staggers: (u32, f64),
     /// Ticks an opponent glove touched the VH's head.
     pub head_hit_ticks: u64,
     /// Physics explosions recovered from.
@@ -267,12 +269,16 @@ pub fn soak(minutes: f64, seed: u64, mut progress: impl FnMut(f64) -> bool) -> S
     loaded.scene.seed = seed;
     loaded.scene.timeline.clear();
     loaded.scene.expect.clear();
+    // Open sparring: no rounds (after the default's three the VH would
+    // stand in its corner for the rest of the soak).
+    loaded.scene.bout = None;
     let mut sim = loaded.sim();
     let mut bot = SparringBot::new(seed, BotRates::default());
     let ticks = (minutes * 60.0 / DT).round() as u64;
     let mut r = SoakReport::default();
     // Memory is first measured after a warm-up (a minute, or half the run).
     let warm = (60_000.min(ticks / 2) / 1000) * 1000;
+    let mut was_staggered = false;
     for i in 0..ticks {
         bot.step(&mut sim);
         let s = sim.step().clone();
@@ -281,6 +287,9 @@ pub fn soak(minutes: f64, seed: u64, mut progress: impl FnMut(f64) -> bool) -> S
         r.worst_joint_gap_mm = r.worst_joint_gap_mm.max(gap_mm);
         r.head_hit_ticks += u64::from(s.head_hit);
         r.farthest = r.farthest.max(s.pelvis.length());
+        let staggered = s.staggered;
+        r.staggers.0 += u32::from(staggered && !was_staggered);
+        was_staggered = staggered;
         if i % 1000 == 0 {
             if !progress(i as f64 / ticks as f64) {
                 break;
@@ -305,6 +314,7 @@ pub fn soak(minutes: f64, seed: u64, mut progress: impl FnMut(f64) -> bool) -> S
     r.events = bot.events;
     r.vh_punches = sim.behaviour.punches_thrown;
     r.evasions = sim.behaviour.evasions;
+    r.staggers.1 = sim.effort.fatigue(&sim.params().effort);
     r.steps = (sim.behaviour.footwork_steps(), sim.lower.steps);
     r.resets = sim.resets;
     r.tally = sim.tally();
