@@ -156,18 +156,6 @@ pub fn run(opts: AppOptions) -> anyhow::Result<()> {
             .with_title("shisen 視線")
             .with_inner_size([1280.0, 720.0]),
         renderer: eframe::Renderer::Wgpu,
-        // Two frames in flight, not one: the simulation and the scene's
-        // description for the next frame run while a software rasteriser
-        // still draws this one. No vsync: the view's render scale holds
-        // the frame rate, and a virtual display (Xvfb) has no refresh to
-        // wait for.
-        wgpu_options: eframe::egui_wgpu::WgpuConfiguration {
-            surface: eframe::egui_wgpu::SurfaceConfig {
-                present_mode: wgpu::PresentMode::AutoNoVsync,
-                desired_maximum_frame_latency: Some(2),
-            },
-            ..Default::default()
-        },
         ..Default::default()
     };
     let fail = failure.clone();
