@@ -102,17 +102,20 @@ fn clock(secs: f64) -> String {
     format!("{}:{:02}", s / 60, s % 60)
 }
 
-/// The scoreboard over the view `rect`.
-pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session) {
+/// The scoreboard over the view `rect`, of `sim`: the bout, or its replay
+/// (whose clock and statistics are its own; the bell's banners and the
+/// last blow are the live bout's, and are not shown over a replay).
+pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session, sim: &shisen::sim::Sim) {
+    let live = s.replay.is_none();
     let p = ui.painter_at(rect);
     let h = rect.height();
     let big = FontId::proportional((h / 15.0).clamp(22.0, 72.0));
     let mid = FontId::proportional((h / 30.0).clamp(15.0, 36.0));
     let small = FontId::proportional((h / 48.0).clamp(12.0, 24.0));
-    let t = s.sim.time();
-    let card = s.sim.stats.total();
+    let t = sim.time();
+    let card = sim.stats.total();
     // The clock, top centre.
-    let (title, time) = match (s.sim.model().bout, s.sim.phase(t)) {
+    let (title, time) = match (sim.model().bout, sim.phase(t)) {
         (Some(b), Some((Phase::Round(n), left))) => {
             (format!("ROUND {n}/{}", b.rounds), clock(left))
         }
@@ -192,7 +195,7 @@ pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session) {
     side(&card.you, "YOU", YOU, true);
     let vh_box = side(&card.vh, "VH", VH, false);
     // The VH's stamina under its figures.
-    let fatigue = s.sim.last().map_or(0.0, |l| l.fatigue) as f32;
+    let fatigue = sim.last().map_or(0.0, |l| l.fatigue) as f32;
     let bar = Rect::from_min_size(
         vh_box.left_bottom() + vec2(0.0, h * 0.008),
         vec2(vh_box.width(), (h / 90.0).max(6.0)),
@@ -211,12 +214,12 @@ pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session) {
         Color32::GRAY,
     );
     // The bell's banner for two seconds.
-    if let Some((at, bell)) = s.log.bells.last()
+    if let Some((at, bell)) = s.log.bells.last().filter(|_| live)
         && t - at < 2.0
     {
         let text = match bell {
             Bell::Start(n) => format!("ROUND {n}"),
-            Bell::End(n) => match s.sim.phase(t) {
+            Bell::End(n) => match sim.phase(t) {
                 Some((Phase::Over, _)) => "END OF THE BOUT".to_string(),
                 _ => format!("END OF ROUND {n}"),
             },
@@ -229,7 +232,7 @@ pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session) {
         p.galley(r.min + vec2(20.0, 8.0), galley, GOLD);
     }
     // The last blow, under the clock.
-    if let Some(lb) = s.last_blow.as_ref().filter(|lb| t - lb.t < 1.5) {
+    if let Some(lb) = s.last_blow.as_ref().filter(|lb| live && t - lb.t < 1.5) {
         let b = &lb.blow;
         let (what, c) = match (b.by, b.kind) {
             (Fighter::Opponent, BlowKind::Hit) => (format!("you hit its {}", part(b.part)), YOU),
@@ -245,7 +248,7 @@ pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session) {
             c,
         );
     }
-    if s.sim.last().is_some_and(|l| l.staggered) {
+    if sim.last().is_some_and(|l| l.staggered) {
         p.text(
             rect.center() + vec2(0.0, h * 0.05),
             Align2::CENTER_CENTER,

@@ -218,6 +218,21 @@ pub fn run(opts: AppOptions) -> anyhow::Result<()> {
 impl ShisenApp {
     fn command(&mut self, c: Command) {
         let s = &mut self.session;
+        // While a replay is watched the bout waits: nothing may step,
+        // restart or unpause it out of sight.
+        if s.replay.is_some()
+            && matches!(
+                c,
+                Command::Pause
+                    | Command::Step
+                    | Command::SlowMotion
+                    | Command::Restart
+                    | Command::Record
+                    | Command::Menu
+            )
+        {
+            return;
+        }
         match c {
             Command::TogglePanel => self.show_panels = !self.show_panels,
             Command::ToggleView => {
@@ -261,9 +276,14 @@ impl ShisenApp {
         let Some(img) = shot.lock().expect("not poisoned").take() else {
             return;
         };
-        let img = match self.bout_ui.report_rect {
-            Some(r) => img.region(&r, Some(ctx.pixels_per_point())),
-            None => (*img).clone(),
+        let ppp = ctx.pixels_per_point();
+        let whole = egui::Rect::from_min_size(
+            egui::Pos2::ZERO,
+            egui::vec2(img.width() as f32 / ppp, img.height() as f32 / ppp),
+        );
+        let img = match self.bout_ui.report_rect.map(|r| r.intersect(whole)) {
+            Some(r) if r.width() >= 1.0 && r.height() >= 1.0 => img.region(&r, Some(ppp)),
+            _ => (*img).clone(),
         };
         self.bout_ui.status = Some(match save_screenshot(&img, path) {
             Ok(()) => format!("saved {}", path.display()),
@@ -288,7 +308,17 @@ impl ShisenApp {
             // The round's report for the rest after it; the next round
             // starts without it.
             match b {
-                shisen::sim::bout::Bell::End(n) => self.bout_ui.report = Some(*n),
+                // (Not when the next round starts at once: no rest.)
+                shisen::sim::bout::Bell::End(n)
+                    if !self
+                        .session
+                        .sim
+                        .phase(*t)
+                        .is_some_and(|(p, _)| p.fighting()) =>
+                {
+                    self.bout_ui.report = Some(*n)
+                }
+                shisen::sim::bout::Bell::End(_) => {}
                 shisen::sim::bout::Bell::Start(n) if *n > 1 => self.bout_ui.report = None,
                 shisen::sim::bout::Bell::Start(_) => {}
             }
@@ -486,7 +516,7 @@ impl eframe::App for ShisenApp {
                     .as_ref()
                     .map_or(&self.session.sim, |r| &r.sim);
                 let rect = viewport.draw(ui, sim);
-                hud::scoreboard(ui, rect, &self.session);
+                hud::scoreboard(ui, rect, &self.session, sim);
             });
         if self.bout_ui.menu {
             match hud::menu(&ctx, &mut self.bout_ui, &mut self.session) {

@@ -243,7 +243,14 @@ impl BodyPlan {
         });
         self.steps += 1;
         self.still_since = t + p.step_time;
-        self.bend_to(DVec3::new(0.0, 0.15, 0.0), t, t, 0.15);
+        // The trunk thrown back and brought up again.
+        self.bend = Some(Reach {
+            from: at(&self.bend, t),
+            to: DVec3::new(0.0, 0.15, 0.0),
+            t0: t,
+            dur: 0.8,
+            back: true,
+        });
     }
 
     /// Turn the body to `heading` (rad about +Y from +Z) if it is more

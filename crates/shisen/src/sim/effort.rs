@@ -89,8 +89,8 @@ pub struct EffortParams {
     /// exhausting cycling (Connell et al. 2016, Sci. Rep. 6:26614; 8 +- 11
     /// % for prosaccades, Connell et al. 2017, Sci. Rep. 7:42726), as it
     /// does with time on task (Di Stasi et al. 2013, Neurosci. Biobehav.
-    /// Rev. 37:968).
-    #[serde(deserialize_with = "unit")]
+    /// Rev. 37:968). At most 0.5.
+    #[serde(deserialize_with = "half")]
     pub saccade_slowing: f64,
     /// E2: saccade latency lengthens by this share. Exercise fatigue left
     /// latency unchanged (Connell et al. 2013, poster; 2017) where sleep
@@ -129,6 +129,9 @@ impl Default for EffortParams {
 
 fn unit<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
     check::in_range(d, 0.0, 1.0)
+}
+fn half<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    check::in_range(d, 0.0, 0.5)
 }
 fn rate<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
     check::in_range(d, 0.0, 0.1)

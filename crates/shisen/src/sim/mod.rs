@@ -363,7 +363,7 @@ impl Sim {
             ..Default::default()
         };
         for blow in blows {
-            self.stats.blow(blow, round);
+            self.stats.blow(blow);
             if blow.by == Fighter::Opponent && blow.kind == BlowKind::Hit {
                 let j = f64::from(blow.impulse);
                 if blow.part == "head" {
@@ -373,7 +373,7 @@ impl Sim {
                 }
             }
         }
-        self.stats.tick(t, round);
+        self.stats.tick(t);
         let p = &self.model.params;
         if self.effort.step(&p.effort, &x, t, self.model.dt) {
             let from = self

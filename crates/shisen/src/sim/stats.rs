@@ -118,6 +118,8 @@ struct Open {
     by: Fighter,
     hand: usize,
     at: f64,
+    /// The round it was thrown in: its outcome counts there.
+    round: u32,
 }
 
 /// The bout's statistics: per round and in total.
@@ -155,9 +157,17 @@ impl Stats {
         } else {
             c.power.thrown += 1;
         }
-        // A second punch with the same glove replaces one still out.
-        self.open.retain(|o| !(o.by == by && o.hand == hand));
-        self.open.push(Open { by, hand, at: t });
+        // A second punch with the same glove ends one still out: a miss.
+        if let Some(i) = self.open.iter().position(|o| o.by == by && o.hand == hand) {
+            let old = self.open.swap_remove(i);
+            self.card(old.round).of_mut(by).missed += 1;
+        }
+        self.open.push(Open {
+            by,
+            hand,
+            at: t,
+            round,
+        });
     }
 
     /// The VH evaded a punch.
@@ -166,8 +176,9 @@ impl Stats {
     }
 
     /// A blow was decided; it settles the punch it came from, if one is
-    /// out (a guard driven into a face is a blow but no punch).
-    pub fn blow(&mut self, b: &Blow, round: u32) {
+    /// out (a guard driven into a face is a blow but no punch), in the
+    /// round the punch was thrown in.
+    pub fn blow(&mut self, b: &Blow) {
         let Some(i) = self
             .open
             .iter()
@@ -175,8 +186,8 @@ impl Stats {
         else {
             return;
         };
-        self.open.swap_remove(i);
-        let c = self.card(round).of_mut(b.by);
+        let open = self.open.swap_remove(i);
+        let c = self.card(open.round).of_mut(b.by);
         match b.kind {
             BlowKind::Hit => {
                 if b.hand == 0 {
@@ -195,19 +206,10 @@ impl Stats {
     }
 
     /// Close the punches whose time is up at `t` as misses.
-    pub fn tick(&mut self, t: f64, round: u32) {
-        let mut missed = [0u32; 2];
-        self.open.retain(|o| {
-            let out = t - o.at > PUNCH_WINDOW;
-            if out {
-                missed[usize::from(o.by == Fighter::Opponent)] += 1;
-            }
-            !out
-        });
-        if missed != [0, 0] {
-            let c = self.card(round);
-            c.vh.missed += missed[0];
-            c.you.missed += missed[1];
+    pub fn tick(&mut self, t: f64) {
+        while let Some(i) = self.open.iter().position(|o| t - o.at > PUNCH_WINDOW) {
+            let o = self.open.swap_remove(i);
+            self.card(o.round).of_mut(o.by).missed += 1;
         }
     }
 }
@@ -230,26 +232,36 @@ mod tests {
     fn a_punch_lands_is_blocked_or_misses_once() {
         let mut s = Stats::default();
         s.thrown(Fighter::Opponent, 0, 1.0, 1);
-        s.blow(&blow(Fighter::Opponent, 0, BlowKind::Hit, "head"), 1);
+        s.blow(&blow(Fighter::Opponent, 0, BlowKind::Hit, "head"));
         // A second contact of the same punch counts for nothing more.
-        s.blow(&blow(Fighter::Opponent, 0, BlowKind::Hit, "head"), 1);
+        s.blow(&blow(Fighter::Opponent, 0, BlowKind::Hit, "head"));
         s.thrown(Fighter::Opponent, 1, 2.0, 1);
-        s.blow(
-            &blow(Fighter::Opponent, 1, BlowKind::Block, "left_glove"),
-            1,
-        );
+        s.blow(&blow(Fighter::Opponent, 1, BlowKind::Block, "left_glove"));
         s.thrown(Fighter::Vh, 1, 3.0, 1);
-        s.tick(3.5, 1);
+        s.tick(3.5);
         assert_eq!(s.total().vh.missed, 0, "still in flight");
-        s.tick(3.7, 1);
+        s.tick(3.7);
         s.thrown(Fighter::Vh, 0, 4.0, 2);
-        s.blow(&blow(Fighter::Vh, 0, BlowKind::Hit, "torso"), 2);
+        s.blow(&blow(Fighter::Vh, 0, BlowKind::Hit, "torso"));
+        // A punch thrown in round 2 that lands after the bell counts there;
+        // one replaced by the same glove's next punch missed.
+        s.thrown(Fighter::Opponent, 0, 5.0, 2);
+        s.thrown(Fighter::Opponent, 0, 5.2, 2);
+        s.blow(&blow(Fighter::Opponent, 0, BlowKind::Hit, "head"));
+        assert_eq!(
+            s.rounds[1].you.jabs,
+            Count {
+                thrown: 2,
+                landed: 1
+            }
+        );
+        assert_eq!(s.rounds[1].you.missed, 1);
         let t = s.total();
         assert_eq!(
             t.you.jabs,
             Count {
-                thrown: 1,
-                landed: 1
+                thrown: 3,
+                landed: 2
             }
         );
         assert_eq!(
@@ -259,7 +271,7 @@ mod tests {
                 landed: 0
             }
         );
-        assert_eq!((t.you.head, t.you.blocked), (1, 1));
+        assert_eq!((t.you.head, t.you.blocked), (2, 1));
         assert_eq!(t.vh.missed, 1);
         assert_eq!((t.vh.jabs.landed, t.vh.body), (1, 1));
         assert_eq!(s.rounds.len(), 2);
@@ -270,13 +282,13 @@ mod tests {
                 landed: 1
             }
         );
-        assert_eq!(t.you.total().show(), "1/2 (50%)");
+        assert_eq!(t.you.total().show(), "2/4 (50%)");
     }
 
     #[test]
     fn a_blow_without_a_punch_is_not_a_punch_landed() {
         let mut s = Stats::default();
-        s.blow(&blow(Fighter::Opponent, 1, BlowKind::Hit, "head"), 1);
+        s.blow(&blow(Fighter::Opponent, 1, BlowKind::Hit, "head"));
         assert_eq!(s.total(), Card::default());
     }
 }
