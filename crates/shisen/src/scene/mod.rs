@@ -69,6 +69,41 @@ mod tests {
     }
 
     #[test]
+    fn bouts_opponents_and_fatigue_checks_are_refused_when_bad() {
+        for (text, line, field) in [
+            (
+                "Scene(\n  duration: 1.0,\n  bout: Some((rounds: 2.5)),\n)",
+                3,
+                "rounds",
+            ),
+            (
+                "Scene(\n  duration: 1.0,\n  vh: (effort: (stagger_time: 9.0)),\n)",
+                3,
+                "stagger_time",
+            ),
+            (
+                "Scene(\n  duration: 1.0,\n  vh: (opponent: Some((level: Champion))),\n)",
+                3,
+                "Champion",
+            ),
+            (
+                "Scene(\n  duration: 1.0,\n  expect: [\n    Fatigue(at_least: 0.0, at_most: 1.0, from: 0.0, to: 1.0),\n  ],\n)",
+                4,
+                "cannot fail",
+            ),
+            (
+                "Scene(\n  duration: 1.0,\n  expect: [\n    Fatigue(at_least: 0.5, at_most: 0.2, from: 0.0, to: 1.0),\n  ],\n)",
+                4,
+                "at_most",
+            ),
+        ] {
+            let e = load(text).unwrap_err().to_string();
+            assert!(e.starts_with(&format!("t.ron:{line}:")), "{e}");
+            assert!(e.contains(field), "{e}");
+        }
+    }
+
+    #[test]
     fn unknown_field_names_line_and_field() {
         let e =
             load("Scene(\n  duration: 1.0,\n  vh: (personality: (a_face: 1.0, bogus: 2.0)),\n)")

@@ -162,6 +162,28 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
                 *at_least == 0 && at_most.is_none()
             }
             Expect::Blinks { at_least, .. } => *at_least == 0,
+            Expect::Fatigue {
+                at_least, at_most, ..
+            } => {
+                if at_most < at_least {
+                    return Err(err(
+                        "Fatigue(",
+                        format!("expect[{i}].at_most"),
+                        format!("must be at least at_least ({at_least})"),
+                    ));
+                }
+                // Fatigue is 0-1: [0, 1] bounds nothing.
+                if *at_least == 0.0 && *at_most >= 1.0 {
+                    return Err(err(
+                        "Fatigue(",
+                        format!("expect[{i}].at_most"),
+                        "must be under 1, or at_least over 0: fatigue is 0-1, so as written \
+                         it cannot fail"
+                            .into(),
+                    ));
+                }
+                false
+            }
             _ => false,
         };
         if vacuous {

@@ -59,16 +59,20 @@ impl Default for BoutParams {
     }
 }
 
+/// A whole number of rounds, 1-15.
 fn rounds<'de, D: serde::Deserializer<'de>>(d: D) -> Result<u32, D::Error> {
-    check::in_range(d, 1.0, 15.0).map(|v| v as u32)
+    let v = check::in_range(d, 1.0, 15.0)?;
+    if v.fract() != 0.0 {
+        return Err(serde::de::Error::custom(format!(
+            "must be a whole number of rounds, got {v}"
+        )));
+    }
+    Ok(v as u32)
 }
 
-fn round_length<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    check::in_range(d, 5.0, 600.0)
-}
-
-fn rest_length<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    check::in_range(d, 0.0, 300.0)
+shisen_gaze::ranged_fields! {
+    round_length: 5.0, 600.0;
+    rest_length: 0.0, 300.0;
 }
 
 /// Where a bout is.
@@ -175,6 +179,22 @@ mod tests {
         assert_eq!(b.phase_at(10.0).0, Phase::Round(2));
         assert_eq!(bell(&b, 9.9995, 10.0005), Some(Bell::End(1)));
         assert_eq!(b.phase_at(20.0).0, Phase::Over);
+    }
+
+    #[test]
+    fn a_bout_reads_whole_rounds_in_range() {
+        let ok: BoutParams = ron::from_str("(rounds: 2, round: 60.0, rest: 0.0)").unwrap();
+        assert_eq!((ok.rounds, ok.round, ok.rest), (2, 60.0, 0.0));
+        for bad in [
+            "(rounds: 2.5)",
+            "(rounds: 0)",
+            "(rounds: 16)",
+            "(round: 1.0)",
+            "(rest: -1.0)",
+            "(bell: 1)",
+        ] {
+            assert!(ron::from_str::<BoutParams>(bad).is_err(), "{bad}");
+        }
     }
 
     #[test]

@@ -20,7 +20,6 @@ use shisen_face::emotion::AuLevels;
 use shisen_face::tables::ActionUnit;
 use shisen_gaze::behaviour::BehaviourParams;
 use shisen_gaze::oculomotor::OculomotorParams;
-use shisen_gaze::util::check;
 
 /// How effort builds, recovers and shows (scene `vh.effort`).
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
@@ -127,29 +126,15 @@ impl Default for EffortParams {
     }
 }
 
-fn unit<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    check::in_range(d, 0.0, 1.0)
-}
-fn half<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    check::in_range(d, 0.0, 0.5)
-}
-fn rate<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    check::in_range(d, 0.0, 0.1)
-}
-fn time_constant<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    check::in_range(d, 1.0, 100_000.0)
-}
-fn weight<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    check::in_range(d, 0.0, 2.0)
-}
-fn impulse<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    check::in_range(d, 1.0, 1000.0)
-}
-fn stagger_time<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    check::in_range(d, 0.2, 5.0)
-}
-fn guard_drop<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    check::in_range(d, 0.0, 0.3)
+shisen_gaze::ranged_fields! {
+    unit: 0.0, 1.0;
+    half: 0.0, 0.5;
+    rate: 0.0, 0.1;
+    time_constant: 1.0, 100_000.0;
+    weight: 0.0, 2.0;
+    impulse: 1.0, 1000.0;
+    stagger_time: 0.2, 5.0;
+    guard_drop: 0.0, 0.3;
 }
 
 /// What happened this tick that costs or hurts.

@@ -826,27 +826,21 @@ fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
             at_most,
             from,
             to,
-        } => {
-            let lo = a.min.unwrap_or(f64::NAN);
-            Verdict {
-                what: format!("the range stays in [{at_least}, {at_most}] m in [{from}, {to}] s"),
-                measured: format!("{lo:.3}-{:.3} m", a.max),
-                value: a.max,
-                pass: a.n > 0 && lo >= *at_least && a.max <= *at_most,
-            }
         }
-        Expect::Fatigue {
+        | Expect::Fatigue {
             at_least,
             at_most,
             from,
             to,
         } => {
+            let (what, unit) = match e {
+                Expect::Range { .. } => ("the range", " m"),
+                _ => ("the VH's fatigue", ""),
+            };
             let lo = a.min.unwrap_or(f64::NAN);
             Verdict {
-                what: format!(
-                    "the VH's fatigue stays in [{at_least}, {at_most}] in [{from}, {to}] s"
-                ),
-                measured: format!("{lo:.3}-{:.3}", a.max),
+                what: format!("{what} stays in [{at_least}, {at_most}]{unit} in [{from}, {to}] s"),
+                measured: format!("{lo:.3}-{:.3}{unit}", a.max),
                 value: a.max,
                 pass: a.n > 0 && lo >= *at_least && a.max <= *at_most,
             }
