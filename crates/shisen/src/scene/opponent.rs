@@ -129,60 +129,97 @@ impl Opponent {
         })
     }
 
-    /// Set the fields this opponent fixes.
+    /// Set the fields this opponent fixes, to values that do not depend
+    /// on what they were (choosing again never compounds): the level's,
+    /// then the style's changes to them.
     pub fn apply(&self, p: &mut Params) {
+        let l = self.level.values();
         let b = &mut p.behaviour;
         let pers = &mut p.personality;
-        let e = &mut p.effort;
-        match self.level {
-            Level::Novice => {
-                b.guard_reaction = 0.18;
-                b.evade_reaction = 0.18;
-                b.attack_rate = 0.15;
-                b.punch_time = 0.6;
-                b.target_spread = 0.06;
-                pers.evade = 0.15;
-                pers.counter = 0.0;
-                e.punch_cost *= 1.5;
-                e.round_drain *= 1.5;
-            }
-            Level::Amateur => {
-                b.attack_rate = 0.3;
-            }
-            Level::Pro => {
-                b.guard_reaction = 0.11;
-                b.evade_reaction = 0.11;
-                b.attack_rate = 0.4;
-                b.punch_time = 0.45;
-                b.target_spread = 0.02;
-                pers.evade = 0.8;
-                pers.counter = 0.5;
-                e.punch_cost *= 0.75;
-                e.round_drain *= 0.75;
-            }
-        }
-        match self.style {
-            Style::Boxer => {}
+        b.guard_reaction = l.reaction;
+        b.evade_reaction = l.reaction;
+        b.attack_rate = l.attack_rate;
+        b.punch_time = l.punch_time;
+        b.target_spread = l.spread;
+        pers.evade = l.evade;
+        pers.counter = l.counter;
+        let fresh = crate::sim::effort::EffortParams::default();
+        p.effort.punch_cost = fresh.punch_cost * l.costs;
+        p.effort.round_drain = fresh.round_drain * l.costs;
+        let range = shisen_gaze::behaviour::BehaviourParams::default().range;
+        let (range, jab_share, body_shot_share, circle_after) = match self.style {
+            Style::Boxer => (range, 0.5, 0.3, Some(3.0)),
             Style::OutFighter => {
-                b.range += 0.12;
-                b.jab_share = 0.65;
-                b.body_shot_share = 0.15;
-                b.circle_after = Some(2.0);
-                pers.evade = (pers.evade + 0.1).min(1.0);
+                pers.evade = (l.evade + 0.1).min(1.0);
+                (range + 0.12, 0.65, 0.15, Some(2.0))
             }
             Style::Brawler => {
-                b.range -= 0.06;
-                b.attack_rate *= 1.4;
-                b.jab_share = 0.3;
-                b.body_shot_share = 0.45;
-                pers.evade *= 0.4;
-                pers.counter *= 0.5;
+                b.attack_rate = l.attack_rate * 1.4;
+                pers.evade = l.evade * 0.4;
+                pers.counter = l.counter * 0.5;
+                (range - 0.06, 0.3, 0.45, Some(3.0))
             }
             Style::CounterPuncher => {
-                b.attack_rate *= 0.5;
-                pers.evade = pers.evade.max(0.8);
-                pers.counter = (pers.counter + 0.4).min(1.0);
+                b.attack_rate = l.attack_rate * 0.5;
+                pers.evade = l.evade.max(0.8);
+                pers.counter = (l.counter + 0.4).min(1.0);
+                (range, 0.5, 0.3, Some(3.0))
             }
+        };
+        b.range = range;
+        b.jab_share = jab_share;
+        b.body_shot_share = body_shot_share;
+        b.circle_after = circle_after;
+    }
+}
+
+/// What a level sets.
+struct LevelValues {
+    /// Guard and evasion reaction, s.
+    reaction: f64,
+    /// Attack decisions a second.
+    attack_rate: f64,
+    /// A punch out and back, s.
+    punch_time: f64,
+    /// Aim's spread, m.
+    spread: f64,
+    /// Shares of seen punches evaded, and of slips countered.
+    evade: f64,
+    counter: f64,
+    /// What a punch and a round cost, against the default's.
+    costs: f64,
+}
+
+impl Level {
+    fn values(self) -> LevelValues {
+        match self {
+            Level::Novice => LevelValues {
+                reaction: 0.18,
+                attack_rate: 0.15,
+                punch_time: 0.6,
+                spread: 0.06,
+                evade: 0.15,
+                counter: 0.0,
+                costs: 1.5,
+            },
+            Level::Amateur => LevelValues {
+                reaction: 0.13,
+                attack_rate: 0.3,
+                punch_time: 0.5,
+                spread: 0.03,
+                evade: 0.7,
+                counter: 0.3,
+                costs: 1.0,
+            },
+            Level::Pro => LevelValues {
+                reaction: 0.11,
+                attack_rate: 0.4,
+                punch_time: 0.45,
+                spread: 0.02,
+                evade: 0.8,
+                counter: 0.5,
+                costs: 0.75,
+            },
         }
     }
 }
@@ -224,6 +261,18 @@ mod tests {
         assert!(n.personality.evade < a.personality.evade);
         assert!(a.personality.evade < pro.personality.evade);
         assert!(n.behaviour.attack_rate < pro.behaviour.attack_rate);
+    }
+
+    #[test]
+    fn choosing_again_does_not_compound() {
+        for o in Opponent::all() {
+            let mut once = Params::default();
+            o.apply(&mut once);
+            let mut twice = once.clone();
+            Opponent::all().last().unwrap().apply(&mut twice);
+            o.apply(&mut twice);
+            assert_eq!(twice, once, "{o}");
+        }
     }
 
     #[test]
