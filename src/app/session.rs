@@ -118,9 +118,6 @@ pub struct Session {
     /// The opponent the VH plays (kept across restarts, which carry its
     /// parameters over as the VH's own), for labels.
     pub opponent: Option<Opponent>,
-    /// The VH as the scene file has it: a new opponent is applied to
-    /// this, not to parameters a previous one already set.
-    base_vh: shisen::scene::VhParams,
     /// The bout so far, for the round report.
     pub log: BoutLog,
     /// Your input since the start, for replays.
@@ -135,7 +132,6 @@ impl Session {
     pub fn new(loaded: LoadedScene, source: SceneSource) -> Self {
         let sim = loaded.sim();
         let loaded_opponent = loaded.scene.vh.opponent;
-        let loaded_vh = loaded.scene.vh.clone();
         Session {
             control: OpponentControl::new(&sim.world.plan),
             sim,
@@ -146,7 +142,6 @@ impl Session {
             history: VecDeque::new(),
             recorder: None,
             opponent: loaded_opponent,
-            base_vh: loaded_vh,
             log: BoutLog::default(),
             events: Vec::new(),
             replay: None,
@@ -157,7 +152,6 @@ impl Session {
     /// Start again against `opponent` (`None`: the scene's own VH) in a
     /// bout of `bout` (`None`: no rounds), keeping the gains.
     pub fn restart_with(&mut self, opponent: Option<Opponent>, bout: Option<BoutParams>) {
-        self.loaded.scene.vh = self.base_vh.clone();
         self.loaded.scene.vh.opponent = opponent;
         self.loaded.scene.bout = bout;
         self.reset(false);
@@ -198,7 +192,6 @@ impl Session {
         let reach = self.control.reach;
         let clock = self.clock;
         let opponent = self.opponent;
-        let base_vh = self.base_vh.clone();
         *self = Session {
             trace: self.trace.take(),
             ..Session::new(loaded, self.source.clone())
@@ -206,7 +199,6 @@ impl Session {
         self.control.reach = reach;
         self.clock = clock;
         self.opponent = opponent;
-        self.base_vh = base_vh;
     }
 
     /// Replace the scene (the old one stays if this fails).

@@ -76,8 +76,17 @@ pub const TOP_LIGHT: f32 = 0.35;
 /// shader computes for it, for surfaces lit once on the CPU (the ground,
 /// the static scenery).
 pub fn plain_light(n: Vec3) -> f32 {
-    let lambert = |dir: Vec3| n.dot(-dir.normalize()).max(0.0);
-    0.22 + 0.85 * lambert(KEY_DIR) + 0.35 * lambert(FILL_DIR) + TOP_LIGHT * lambert(TOP_DIR)
+    key_fill_light(n) + TOP_LIGHT * lambert(n, TOP_DIR)
+}
+
+/// The same without the top light: ambient, key and fill (the canvas's
+/// light, to which the shader adds the top light where nothing shadows it).
+pub fn key_fill_light(n: Vec3) -> f32 {
+    0.22 + 0.85 * lambert(n, KEY_DIR) + 0.35 * lambert(n, FILL_DIR)
+}
+
+fn lambert(n: Vec3, dir: Vec3) -> f32 {
+    n.dot(-dir.normalize()).max(0.0)
 }
 
 /// How a surface is shaded.

@@ -8,7 +8,9 @@ use std::num::NonZeroU64;
 use glam::{Mat3, Mat4, Vec3};
 use wgpu::util::DeviceExt;
 
-use super::draw::{FILL_DIR, KEY_DIR, LineVertex, Material, MeshKey, TOP_DIR, TOP_LIGHT};
+use super::draw::{
+    FILL_DIR, KEY_DIR, LineVertex, Material, MeshKey, TOP_DIR, TOP_LIGHT, key_fill_light,
+};
 use super::frame::{AvatarPart, Frame, Looks};
 use super::geometry::{self, MeshData, Vertex};
 
@@ -805,9 +807,8 @@ impl Renderer {
 
         let cam = &frame.camera;
         let (key, fill) = (KEY_DIR.normalize(), FILL_DIR.normalize());
-        // The shader's plain lighting (ambient 0.22, key 0.85, fill 0.35)
-        // on the floor's upward normal.
-        let floor_light = 0.22 + 0.85 * (-key.y).max(0.0) + 0.35 * (-fill.y).max(0.0);
+        // The shader's plain lighting on the floor's upward normal.
+        let floor_light = key_fill_light(Vec3::Y);
         let redo_shadow =
             self.shadow_light.is_none() || self.frames.is_multiple_of(self.shadow_every);
         self.frames += 1;

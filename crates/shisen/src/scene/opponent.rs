@@ -120,15 +120,6 @@ impl FromStr for Opponent {
 }
 
 impl Opponent {
-    /// Every combination, for menus.
-    pub fn all() -> impl Iterator<Item = Opponent> {
-        Level::ALL.into_iter().flat_map(|level| {
-            Style::ALL
-                .into_iter()
-                .map(move |style| Opponent { level, style })
-        })
-    }
-
     /// Set the fields this opponent fixes, to values that do not depend
     /// on what they were (choosing again never compounds): the level's,
     /// then the style's changes to them.
@@ -227,6 +218,17 @@ impl Level {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    impl Opponent {
+        /// Every combination.
+        fn all() -> impl Iterator<Item = Opponent> {
+            Level::ALL.into_iter().flat_map(|level| {
+                Style::ALL
+                    .into_iter()
+                    .map(move |style| Opponent { level, style })
+            })
+        }
+    }
 
     #[test]
     fn names_read_back() {

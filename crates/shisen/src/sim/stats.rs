@@ -91,14 +91,6 @@ pub struct Card {
 }
 
 impl Card {
-    /// One fighter's.
-    pub fn of(&self, f: Fighter) -> &FighterStats {
-        match f {
-            Fighter::Vh => &self.vh,
-            Fighter::Opponent => &self.you,
-        }
-    }
-
     fn of_mut(&mut self, f: Fighter) -> &mut FighterStats {
         match f {
             Fighter::Vh => &mut self.vh,
