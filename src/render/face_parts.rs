@@ -15,7 +15,6 @@ const MOUTH: [f32; 4] = {
     let c = shisen_face::appearance::FaceStyle::DEFAULT.inside;
     [c[0], c[1], c[2], 1.0]
 };
-const TEETH: [f32; 4] = [0.80, 0.78, 0.70, 1.0];
 
 /// The mouth's inside, seen when the lips part: a dark cavity behind the
 /// lips, placed from the middle of the lips' deformed edges, and the teeth,
@@ -45,12 +44,12 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     // The cavity is dark and reaches past the mouth's corners, which lie
     // well behind its middle, so the neck inside the head never shows
     // through the opening; with the teeth showing, its front stands behind
-    // the canines (the head's inside between is drawn dark, shader.wgsl).
-    // Behind closed lips it only darkens the seam and stays within the
+    // the canines and is deep, so its surface curves back behind the
+    // premolars at the corners (the head's inside between is drawn dark,
+    // shader.wgsl). Behind closed lips it only darkens the seam and stays within the
     // mouth's width: that close to the lips a wider one would come out
     // through the cheeks beside the corners.
-    let cavity = |front: f32, reach: f32| {
-        let half_d = 0.026;
+    let cavity = |front: f32, reach: f32, half_d: f32| {
         ellipsoid(
             Vec3::new(0.0, (upper.y + lower.y) / 2.0, front - half_d),
             Vec3::new(w * reach, 0.02 + gap * 0.6, half_d),
@@ -59,7 +58,7 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     };
     let lips_back = upper.z.min(lower.z) - 0.006;
     if gap < TEETH_SHOW_GAP {
-        return vec![cavity(lips_back, 1.0)];
+        return vec![cavity(lips_back, 1.0, 0.026)];
     }
     // Incisal edges at rest: the upper one a little below the upper lip's
     // rest edge and behind it; the lower one overlapped by the upper
@@ -92,75 +91,144 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     // ones, which the jaw carries back as it opens (about 6 mm behind the
     // lower incisors round their smaller arch).
     let front = (upper_edge.z - CAVITY_BEHIND_TEETH).min(lower_edge.z - 0.007) - push;
-    let mut draws = vec![cavity(lips_back.min(front), 1.6)];
-    // Each arch's teeth, midline outward, along a circle through the
-    // incisal midpoint; the lower arch turns with the jaw.
+    let mut draws = vec![cavity(lips_back.min(front), 1.3, 0.045)];
+    let shaded = |c: [f32; 3], shade: f32| [c[0] * shade, c[1] * shade, c[2] * shade, 1.0];
+    // The tongue lies on the mouth's floor behind the lower incisors, its
+    // back under the palate, and drops with the jaw; the part behind the
+    // cavity's front is hidden by it.
+    let tongue_rest =
+        lower_rest + Vec3::new(0.0, -TONGUE_HALF[1] - 0.003, -TONGUE_HALF[2] - 0.004);
+    draws.push(ellipsoid(
+        tongue_rest + shisen_face::muscle::jaw_rotation(tongue_rest - jaw.pivot, theta)
+            - Vec3::Z * push,
+        Vec3::from_array(TONGUE_HALF),
+        shaded(TONGUE, lit),
+    ));
+    // Each arch's teeth, midline outward, along the arch's curve (the
+    // lower one turning with the jaw), each crown facing out of the arch,
+    // and the gum over its neck.
     let arches = [
-        (upper_edge, &UPPER_TEETH, UPPER_ARCH_R, 1.0, 0.0),
-        (lower_rest, &LOWER_TEETH, LOWER_ARCH_R, -1.0, theta),
+        (upper_edge, &UPPER_TEETH, &UPPER_ARCH, 1.0, 0.0),
+        (lower_rest, &LOWER_TEETH, &LOWER_ARCH, -1.0, theta),
     ];
-    for (edge, teeth, radius, up, turn) in arches {
+    for (edge, teeth, arch, up, turn) in arches {
         let mut s = 0.0;
         for &(width, height) in teeth.iter() {
-            let phi = (s + width / 2.0) / radius;
+            let (x, back, angle) = arch_at(arch, s + width / 2.0);
             s += width;
-            let back = radius * (1.0 - phi.cos());
             // Teeth further round the arch sit deeper in the mouth's shade.
-            let shade = lit * (1.0 - back / 0.02).clamp(0.45, 1.0);
-            let colour = [TEETH[0] * shade, TEETH[1] * shade, TEETH[2] * shade, 1.0];
+            let shade = lit * (1.0 - back / 0.04).clamp(0.4, 1.0);
             for side in [-1.0f32, 1.0] {
-                let local = Vec3::new(
-                    side * radius * phi.sin(),
-                    up * height / 2.0,
-                    -back - TOOTH_HALF_DEPTH,
-                );
-                let root = edge + local;
-                let centre = root + shisen_face::muscle::jaw_rotation(root - jaw.pivot, turn)
-                    - Vec3::Z * push;
-                let rotation = Quat::from_rotation_x(turn) * Quat::from_rotation_y(side * phi);
-                // A crown is a flat-fronted, rounded block; the narrow gaps
-                // between them show the cavity as the lines between teeth.
-                draws.push(Draw {
+                let rotation = Quat::from_rotation_x(turn) * Quat::from_rotation_y(side * angle);
+                let inward = rotation * -Vec3::Z;
+                let place = |y: f32, depth: f32| {
+                    let root = edge + Vec3::new(side * x, y, -back);
+                    root + shisen_face::muscle::jaw_rotation(root - jaw.pivot, turn)
+                        + inward * depth
+                        - Vec3::Z * push
+                };
+                // A crown is a flat-fronted, rounded block; the narrow
+                // gaps between them show the cavity as the lines between
+                // teeth, and the gum's papillae at their necks.
+                let block = |centre: Vec3, half: Vec3, color| Draw {
                     mesh: MeshKey::Tooth,
-                    model: face_frame
-                        * Mat4::from_scale_rotation_translation(
-                            Vec3::new(width * 0.46, height / 2.0, TOOTH_HALF_DEPTH),
-                            rotation,
-                            centre,
-                        ),
-                    color: colour,
+                    model: face_frame * Mat4::from_scale_rotation_translation(half, rotation, centre),
+                    color,
                     material: Material::Plain,
-                });
+                };
+                draws.push(block(
+                    place(up * height / 2.0, TOOTH_HALF_DEPTH),
+                    Vec3::new(width * 0.46, height / 2.0, TOOTH_HALF_DEPTH),
+                    shaded(TEETH, shade),
+                ));
+                draws.push(block(
+                    place(up * (height + GUM_HEIGHT / 2.0 - GUM_OVER), 1.4 * TOOTH_HALF_DEPTH),
+                    Vec3::new(width * 0.56, GUM_HEIGHT / 2.0, TOOTH_HALF_DEPTH),
+                    shaded(GUM, shade),
+                ));
             }
         }
     }
     draws
 }
 
+/// The place `s` metres along one side of a dental arch from the midline
+/// (a polyline such as [`UPPER_ARCH`], extended past its last point):
+/// across and back from the incisal midpoint, m, and the angle of the
+/// arch's outward normal from straight ahead.
+fn arch_at(arch: &[[f32; 2]], s: f32) -> (f32, f32, f32) {
+    let mut left = s;
+    let last = arch.len() - 2;
+    for (i, w) in arch.windows(2).enumerate() {
+        let d = glam::Vec2::from(w[1]) - glam::Vec2::from(w[0]);
+        let len = d.length();
+        if left <= len || i == last {
+            let p = glam::Vec2::from(w[0]) + d * (left / len);
+            return (p.x, p.y, d.y.atan2(d.x));
+        }
+        left -= len;
+    }
+    (0.0, 0.0, 0.0)
+}
+
+/// Crown colours (linear RGB): enamel, a little darker and yellower than
+/// white; the attached gingiva's pink; the tongue's red.
+const TEETH: [f32; 3] = [0.80, 0.77, 0.66];
+const GUM: [f32; 3] = [0.52, 0.17, 0.17];
+const TONGUE: [f32; 3] = [0.46, 0.13, 0.13];
+/// Half sizes of the tongue's resting body (across, up, back), m: an adult
+/// tongue is about 5 cm across and 7-10 cm long (our reading; only its tip
+/// and the top of its blade show).
+const TONGUE_HALF: [f32; 3] = [0.023, 0.008, 0.032];
+/// Gum shown over a crown's neck, and how far the crown overlaps it, m
+/// (the attached gingiva is 3-6 mm high; a smile that lifts the upper lip
+/// 2-3 mm past the crowns shows it).
+const GUM_HEIGHT: f32 = 0.006;
+const GUM_OVER: f32 = 0.0015;
+
 /// Crown width (along the arch) and height of each tooth from the midline
-/// out to the second premolar, m (Wheeler's mean crown dimensions: Nelson
+/// out to the first molar, m (Wheeler's mean crown dimensions: Nelson
 /// 2015, Wheeler's Dental Anatomy, 10th ed.). Only what the lips' opening
-/// frames is seen; molars never are.
-const UPPER_TEETH: [(f32, f32); 5] = [
+/// frames is seen: the premolars and the first molar fill a wide smile's
+/// corners.
+const UPPER_TEETH: [(f32, f32); 6] = [
     (0.0085, 0.0105),
     (0.0065, 0.0090),
     (0.0075, 0.0100),
     (0.0070, 0.0085),
     (0.0065, 0.0080),
+    (0.0100, 0.0075),
 ];
-const LOWER_TEETH: [(f32, f32); 5] = [
+const LOWER_TEETH: [(f32, f32); 6] = [
     (0.0050, 0.0090),
     (0.0055, 0.0095),
     (0.0070, 0.0110),
     (0.0070, 0.0085),
     (0.0070, 0.0080),
+    (0.0110, 0.0075),
 ];
-/// Radii of the circles the front teeth follow, m: the upper canines'
-/// tips lie about 17 mm either side of the midline and 9 mm behind the
-/// incisors (intercanine width about 34 mm, lower about 26 mm: Bishara et
-/// al. 1997, Am. J. Orthod. 111:401), a circle of radius 21 mm (16 mm).
-const UPPER_ARCH_R: f32 = 0.021;
-const LOWER_ARCH_R: f32 = 0.016;
+/// Each arch's curve, one side, from the incisal midpoint: points across
+/// and back, m. It rounds through the incisors to the canine's tip (the
+/// arch's corner: intercanine width about 34 mm upper, 26 mm lower, 9 and
+/// 6 mm behind the incisors) and runs back and out along the premolars to
+/// the first molars (intermolar width about 50 and 45 mm, 27 and 24 mm
+/// back): Bishara et al. 1997, Am. J. Orthod. 111:401.
+const UPPER_ARCH: [[f32; 2]; 6] = [
+    [0.0, 0.0],
+    [0.0060, 0.0011],
+    [0.0115, 0.0041],
+    [0.0170, 0.0090],
+    [0.0210, 0.0180],
+    [0.0260, 0.0360],
+];
+const LOWER_ARCH: [[f32; 2]; 6] = [
+    [0.0, 0.0],
+    [0.0045, 0.0006],
+    [0.0090, 0.0024],
+    [0.0130, 0.0060],
+    [0.0175, 0.0150],
+    [0.0230, 0.0330],
+];
 /// Half the thickness drawn of a crown, front to back, m (our choice:
 /// only the front face shows).
 const TOOTH_HALF_DEPTH: f32 = 0.003;

@@ -399,22 +399,23 @@ pub fn capsule_key(half_height: f32, radius: f32) -> MeshKey {
     }
 }
 
-/// The face deformed by the current face state, with recomputed normals
+/// The face deformed by the current face state, its tissue thickened
+/// where the skin bunches (W4), with normals recomputed from that shape
 /// and the wrinkles of its compressed skin.
 fn face_vertices(sim: &Sim) -> Vec<Vertex> {
     let face = &sim.model().face;
     let mesh = &face.mesh;
     let mut pos = vec![Vec3::ZERO; mesh.positions.len()];
     shisen_face::deform(face, &sim.face_state, &mut pos);
-    let normals = compute_normals(&pos, &mesh.triangles);
     let mut wrinkles = Vec::new();
     shisen_face::wrinkle::measure(
         mesh,
         &face.wrinkle_basis,
         &face.params.skin,
-        &pos,
+        &mut pos,
         &mut wrinkles,
     );
+    let normals = compute_normals(&pos, &mesh.triangles);
     pos.iter()
         .zip(&normals)
         .zip(&face.paint.colours)

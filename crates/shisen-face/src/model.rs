@@ -184,6 +184,11 @@ impl FaceState {
             a.k[lower] += face
                 .rig
                 .lid_follow_k(e, 1, pitch, bp.lower_lid_follow_gain as f32);
+            // AU 6's cheek pushes the lower lid up.
+            let orbital = a.k[ch(MuscleKind::OculiOrbital)].max(0.0);
+            a.k[lower] += face
+                .rig
+                .lower_lid_k(e, bp.cheek_lid_rise_m as f32 * orbital);
             let i = ch(MuscleKind::OculiUpperPalpebral);
             // A relaxation (AU 5) stands for levator's raise.
             let expressed = face.rig.levator_k(
@@ -441,6 +446,57 @@ mod tests {
                 assert!(white > 0.0005, "rows {rows} {emotion:?}: {white} m");
             }
         }
+    }
+
+    /// Heights of the left eye's upper and lower mid margins in `emotion`
+    /// at its apex, m.
+    fn margins(f: &Face, emotion: Emotion) -> (f32, f32) {
+        let mut s = FaceState::default();
+        s.set_emotion(f, emotion, 1.0, Speed::Fast, Pattern::III);
+        let mut rng = StdRng::seed_from_u64(1);
+        for _ in 0..2000 {
+            s.step(f, 0.001, &mut rng);
+        }
+        let mut out = vec![Vec3::ZERO; f.mesh.positions.len()];
+        deform(f, &s, &mut out);
+        let mid = |rim: &[u32]| out[rim[rim.len() / 2] as usize].y;
+        (mid(&f.mesh.rims.upper_lid[0]), mid(&f.mesh.rims.lower_lid[0]))
+    }
+
+    /// The eye's opening (upper minus lower mid margin), m.
+    fn opening(f: &Face, emotion: Emotion) -> f32 {
+        let (upper, lower) = margins(f, emotion);
+        upper - lower
+    }
+
+    /// AU 7 (the lid tightener, 0.9 in anger's prototype) raises the
+    /// lower lid by at least a millimetre and a half.
+    #[test]
+    fn anger_tightens_the_lower_lid() {
+        let mut params = FaceParams::default_params();
+        params.blink.mean_interval_s = 1e6;
+        let f = Face::new(MeshParams { rows: 64 }, params);
+        let rest = margins(&f, Emotion::Neutral).1;
+        let rise = margins(&f, Emotion::Anger).1 - rest;
+        println!("anger: lower lid up {:.2} mm", rise * 1e3);
+        assert!(rise > 0.0015, "{rise}");
+    }
+
+    /// AU 6 narrows a smiling eye from below by a quarter to a half of
+    /// its opening, the cheek's push on the lower lid adding at least a
+    /// millimetre to what the sphincter's own field does.
+    #[test]
+    fn a_smile_narrows_the_eye_from_below() {
+        let mut params = FaceParams::default_params();
+        params.blink.mean_interval_s = 1e6;
+        let f = Face::new(MeshParams { rows: 64 }, params.clone());
+        let (neutral, smile) = (opening(&f, Emotion::Neutral), opening(&f, Emotion::Happiness));
+        println!("opening: neutral {:.2} mm, smile {:.2} mm", neutral * 1e3, smile * 1e3);
+        assert!((0.5 * neutral..0.75 * neutral).contains(&smile), "{smile} vs {neutral}");
+        params.blink.cheek_lid_rise_m = 0.0;
+        let seed = Face::new(MeshParams { rows: 64 }, params);
+        let flat = opening(&seed, Emotion::Happiness);
+        assert!(smile < flat - 0.001, "{smile} vs {flat} without the push");
     }
 
     #[test]

@@ -73,6 +73,19 @@ pub struct BlinkParams {
         deserialize_with = "shisen_gaze::util::check::non_negative"
     )]
     pub lower_lid_follow_gain: f64,
+    /// How far the lower lid's middle rises per unit contraction of the
+    /// orbital orbicularis (AU 6), m: the cheek the muscle raises pushes
+    /// the lower lid up and narrows the eye from below, the mark of a
+    /// felt smile (Ekman, Friesen & Hager 2002, FACS Manual, AU 6;
+    /// Duchenne's smile). Default 0.006: happiness's orbital contraction
+    /// (0.25) lifts it 1.5 mm more than the sphincter's own field does,
+    /// together a third of the eye's opening (our choice); 0 leaves the
+    /// lid to the sphincter's field (the seed profile).
+    #[serde(
+        default = "default_cheek_lid_rise",
+        deserialize_with = "shisen_gaze::util::check::non_negative"
+    )]
+    pub cheek_lid_rise_m: f64,
     /// Gain of the upper lid's raise on a relaxation of the upper
     /// palpebral orbicularis (an expression's negative contraction, AU 5;
     /// face.md L1). The thesis codes AU 5 as that muscle relaxing, so the
@@ -141,6 +154,10 @@ fn default_levator_gain() -> f64 {
 
 fn default_levator_max_raise() -> Option<f64> {
     Some(0.0045)
+}
+
+fn default_cheek_lid_rise() -> f64 {
+    0.006
 }
 
 fn default_lower_lid_follow_gain() -> f64 {

@@ -42,6 +42,17 @@ fn eye_centre(l: &Landmarks, side: Side) -> Vec3 {
     }
 }
 
+/// How far to either side of the eye's centre the orbital part of
+/// orbicularis oculi moves the skin, and the width over which its field
+/// fades out toward that reach and toward the eye's centre behind, m.
+const ORBITAL_REACH: f32 = 0.05;
+const ORBITAL_FADE: f32 = 0.012;
+
+/// Smoothstep on [0, 1].
+fn smooth(x: f32) -> f32 {
+    x * x * (3.0 - 2.0 * x)
+}
+
 /// Radius around each eyeball centre that lid vertices are kept outside of.
 pub const LID_CLEARANCE: f32 = dims::EYEBALL_R + 0.0006;
 
@@ -197,14 +208,25 @@ impl Rig {
                 let masked = match id.kind {
                     MuscleKind::OculiUpperPalpebral => p.z < ec.z,
                     MuscleKind::OculiLowerPalpebral => p.y >= ec.y || p.z < ec.z,
-                    MuscleKind::OculiOrbital => p.z < ec.z || (p.x - ec.x).abs() > 0.05,
+                    MuscleKind::OculiOrbital => p.z < ec.z || (p.x - ec.x).abs() > ORBITAL_REACH,
                     MuscleKind::OrbicularisOris => p.z < ec.z - 0.02,
                     _ => false,
                 };
                 if masked {
                     continue;
                 }
-                let d = g.displacement(p, 1.0);
+                // The orbital part's field fades out toward its mask's
+                // edges: cut off, it stepped the skin along a line down
+                // the cheek beside the eye in every smile.
+                let fade = match id.kind {
+                    MuscleKind::OculiOrbital => {
+                        let side = ((ORBITAL_REACH - (p.x - ec.x).abs()) / ORBITAL_FADE).min(1.0);
+                        let back = ((p.z - ec.z) / ORBITAL_FADE).min(1.0);
+                        smooth(side) * smooth(back)
+                    }
+                    _ => 1.0,
+                };
+                let d = fade * g.displacement(p, 1.0);
                 if d != Vec3::ZERO {
                     f.index.push(i as u32);
                     f.delta.push(d);
@@ -272,6 +294,13 @@ impl Rig {
         } else {
             gain * dims::EYEBALL_R * pitch.sin() / c
         }
+    }
+
+    /// Lower palpebral contraction that raises the mid margin of eye
+    /// `e`'s lower lid by `rise` metres (0 if the channel cannot move it).
+    pub fn lower_lid_k(&self, e: usize, rise: f32) -> f32 {
+        let c = self.lid_y_per_k[e][1];
+        if c.abs() < 1e-6 { 0.0 } else { rise / c }
     }
 
     /// Upper palpebral contraction standing for levator palpebrae's lift of

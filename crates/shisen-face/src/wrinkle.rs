@@ -51,6 +51,19 @@ pub struct SkinParams {
     /// 0 keeps Waters' fields exactly (the seed profile).
     #[serde(default = "default_pull_spread", deserialize_with = "pull_spread")]
     pub pull_spread_m: f64,
+    /// How much the soft tissue thickens where the skin over it loses
+    /// area (W4), as a fraction of its depth per unit area lost, 0-1. 1:
+    /// the layer keeps its volume; 0 leaves the surface where the muscles
+    /// put it (the seed profile).
+    #[serde(
+        default = "default_thickening",
+        deserialize_with = "shisen_gaze::util::check::unit_interval"
+    )]
+    pub thickening: f64,
+}
+
+fn default_thickening() -> f64 {
+    1.0
 }
 
 fn default_pull_spread() -> f64 {
@@ -74,6 +87,7 @@ impl Default for SkinParams {
             wrinkle_spacing_m: 0.006,
             wrinkle_onset_strain: 0.25,
             pull_spread_m: default_pull_spread(),
+            thickening: default_thickening(),
         }
     }
 }
@@ -94,6 +108,25 @@ pub struct WrinkleBasis {
     /// triangles' planes hold (`t . P t`, 0 where the surface faces along
     /// the axis).
     tangents: Vec<[(Vec3, f32); 2]>,
+    /// Per vertex: the depth of soft tissue that thickens under it (W4),
+    /// m, times the skin's `thickening`; 0 on the folds' tethers.
+    depth: Vec<f32>,
+    /// Per vertex: the share of its compression that folds into lines
+    /// rather than thickening the tissue (W2), 0-1.
+    line_share: Vec<f32>,
+    /// The two cheeks' fat compartments (W4).
+    cheeks: [Vec<Cheek>; 2],
+}
+
+/// A vertex over a cheek's fat compartment (W4).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+struct Cheek {
+    vertex: u32,
+    /// The fat's volume under the vertex's share of skin at rest, per unit
+    /// area lost, m^3 (times the skin's `thickening`).
+    volume: f32,
+    /// Thickness per unit volume gathered, 1/m^2.
+    profile: f32,
 }
 
 impl WrinkleBasis {
@@ -193,9 +226,143 @@ impl WrinkleBasis {
                 })
             })
             .collect();
+        // Each vertex's share of the skin's area: a third of its triangles'.
+        let mut vertex_area = vec![0.0f32; p.len()];
+        for (t, a) in mesh.triangles.iter().zip(&area) {
+            for &i in t {
+                vertex_area[i as usize] += a / 3.0;
+            }
+        }
+        let thickening = skin.thickening as f32;
+        let l = &mesh.landmarks;
+        for (i, (&v, &n)) in p.iter().zip(&mesh.normals).enumerate() {
+            let (depth, cheek) = tissue(l, v, n);
+            // The cheek's fat reaches beyond the compartment that bulges;
+            // what the skin over it gathers goes to that compartment.
+            let c = l.cheekbone.lerp(l.mouth_corner, 0.4);
+            let d = Vec2::new(v.x.abs() - c.x.abs(), v.y - c.y).length() / CHEEK_RADIUS;
+            let fat = if n.z > 0.2 { (1.0 - d * d).max(0.0).powi(2) } else { 0.0 };
+            let (fat, profile) = match cheek {
+                Some((_, profile)) => (1.0, profile),
+                None => (fat, 0.0),
+            };
+            b.depth.push(thickening * depth * (1.0 - fat));
+            let under = depth.max(CHEEK_DEPTH * fat);
+            b.line_share
+                .push(smoothstep(((LINES_TO - under) / (LINES_TO - LINES_FROM)).clamp(0.0, 1.0)));
+            if fat > 0.0 {
+                b.cheeks[usize::from(v.x < 0.0)].push(Cheek {
+                    vertex: i as u32,
+                    volume: thickening * SUPERFICIAL_FAT * fat * vertex_area[i],
+                    profile,
+                });
+            }
+        }
+        // Normalise each compartment's profile to spread a unit volume.
+        for cheek in &mut b.cheeks {
+            let total: f32 = cheek.iter().map(|c| c.profile * vertex_area[c.vertex as usize]).sum();
+            for c in cheek.iter_mut() {
+                c.profile /= total.max(1e-12);
+            }
+        }
         b
     }
 }
+
+/// Where a rest point `p` lies on the face's soft tissue (W4): the depth
+/// that thickens under it, m, and, over a cheek's fat compartment, which
+/// cheek and how much of the compartment's gathered volume it takes
+/// (unnormalised).
+///
+/// Depths: about 5 mm over the forehead, temples and glabella, 9 mm under
+/// the eyes (De Greef et al. 2006, Forensic Sci. Int. 159S:S126, adult
+/// means by ultrasound). The cheek's fat (about 15 mm deep, the same
+/// source) lies in compartments bounded by ligaments (Rohrich & Pessa
+/// 2007, Plast. Reconstr. Surg. 119:2219); the nasolabial one ends
+/// medially at the nasolabial fold's line, from beside the nose's wing to
+/// beside the mouth's corner. What a smile gathers of a compartment's
+/// skin thickens the whole compartment, most just beside that line (the
+/// fat is held back by it), nothing on it: the fold is the bulge's edge.
+fn tissue(l: &super::mesh::Landmarks, p: Vec3, n: Vec3) -> (f32, Option<(usize, f32)>) {
+    let q = Vec2::new(p.x.abs(), p.y);
+    let under_eye = {
+        let d = Vec2::new(l.orbit_lower.x.abs(), l.orbit_lower.y).distance(q) / 0.015;
+        (1.0 - d * d).max(0.0).powi(2)
+    };
+    let depth = 0.005 + 0.004 * under_eye;
+    // Distance lateral of the fold's line (negative medial of it).
+    let [a, b] = fold_line(l);
+    let along = (b - a).normalize();
+    let normal = Vec2::new(-along.y, along.x);
+    let lateral = normal * normal.x.signum();
+    let s = (q - a).dot(lateral);
+    let t = (q - a).dot(along) / (b - a).length();
+    let (top, bottom) = (l.orbit_lower.y - 0.006, l.mouth_corner.y - 0.012);
+    let inside = s > 0.0
+        && n.z > 0.2
+        && (bottom..top).contains(&p.y)
+        && q.x < l.cheekbone.x.abs() + 0.02
+        && (-0.4..1.1).contains(&t);
+    if !inside {
+        return (depth, None);
+    }
+    let ends = smoothstep(((top - p.y) / 0.008).min(1.0)) * smoothstep(((p.y - bottom) / 0.008).min(1.0));
+    let profile = smoothstep((s / FOLD_RISE).min(1.0)) * (-(s / CHEEK_REACH).powi(2)).exp() * ends;
+    (0.0, Some((usize::from(p.x < 0.0), profile)))
+}
+
+/// The nasolabial fold's line on the left of the face, from beside the
+/// nose's wing to beside and below the mouth's corner (x, y), m.
+fn fold_line(l: &super::mesh::Landmarks) -> [Vec2; 2] {
+    [
+        Vec2::new(l.nostril_wing.x.abs() + 0.003, l.nostril_wing.y),
+        Vec2::new(l.mouth_corner.x.abs() + 0.005, l.mouth_corner.y - 0.010),
+    ]
+}
+
+/// Reach of the cheek's fat about its middle, m (our reading of the
+/// cheek's extent: from the nasolabial fold to in front of the ear, from
+/// under the eye to the jaw).
+const CHEEK_RADIUS: f32 = 0.035;
+
+/// Depth of the cheek's fat, m (De Greef et al. 2006: 14-18 mm over the
+/// cheek's middle in adults; our round figure).
+const CHEEK_DEPTH: f32 = 0.015;
+/// Depth of the superficial fat over the cheek that the skin's pull
+/// gathers, m: the fat above the face's fibrous layer (SMAS), which moves
+/// with the skin; the deep fat under it stays on the bone (our choice,
+/// about 6 mm of the cheek's 15).
+const SUPERFICIAL_FAT: f32 = 0.006;
+
+/// Over this width lateral of its line the fold rises to the bulge, m;
+/// and the bulge falls off over `CHEEK_REACH` further out (our choices: an
+/// adult's fold is a few millimetres wide, the nasolabial mound about
+/// 1.5 cm).
+const FOLD_RISE: f32 = 0.005;
+const CHEEK_REACH: f32 = 0.011;
+
+fn smoothstep(x: f32) -> f32 {
+    x * x * (3.0 - 2.0 * x)
+}
+
+/// Skin over less soft tissue than `LINES_FROM` folds its whole
+/// compression into lines (forehead, glabella, the nose's root, the eyes'
+/// corners); over more than `LINES_TO` (the cheeks' fat pads) none, the
+/// fat thickens instead (W4), m. A stiff film buckles into lines on a thin
+/// compliant layer and not on a deep one that can take up the squeeze
+/// (Cerda & Mahadevan 2003); the bounds are our choice between the depths
+/// of the forehead (5 mm) and the cheeks (15 mm).
+const LINES_FROM: f32 = 0.007;
+const LINES_TO: f32 = 0.011;
+
+
+/// Highest bulge of a cheek's compartment, m (our bound, a third of its
+/// depth; a broad smile lifts the cheek's mound by a few millimetres).
+const MAX_CHEEK_BULGE: f32 = 0.006;
+
+/// Thickening is bounded at this fraction of the tissue's depth (W4): the
+/// fat bulges by its own depth's part that the skin's pull gathers, no more.
+const MAX_THICKENING: f32 = 0.35;
 
 /// Per-vertex wrinkle data for the renderer: `[s_x, s_y, x / L, y / L]`,
 /// the peak slopes (W2) of the lines taking up the skin's compression along
@@ -234,8 +401,13 @@ pub fn buckle(cx: f32, cy: f32, c0: f32) -> [f32; 2] {
     [(ex - ey).max(0.0), (ey - ex).max(0.0)].map(|e| 2.0 * e.sqrt()) // (W2)
 }
 
-/// Measure the compression of `deformed` against the rest shape (W1) and
-/// write each vertex's wrinkle data into `out`.
+/// Measure the compression of `deformed` against the rest shape (W1),
+/// write each vertex's wrinkle data into `out`, and thicken the tissue
+/// under skin that lost area (W4): each vertex moves out along its rest
+/// normal by its tissue depth times the area lost, at most
+/// [`MAX_THICKENING`] of the depth. The cheeks bulge in a smile, the skin
+/// under the eyes in a squint, the glabella between frown lines; the
+/// normals taken from these positions shade the bulges.
 ///
 /// The strain is resolved on the face's two axes rather than followed
 /// along its principal direction: expression lines run across the
@@ -247,13 +419,14 @@ pub fn measure(
     mesh: &HeadMesh,
     basis: &WrinkleBasis,
     skin: &SkinParams,
-    deformed: &[Vec3],
+    deformed: &mut [Vec3],
     out: &mut Vec<WrinkleVertex>,
 ) {
     let n = mesh.positions.len();
     out.clear();
     out.resize(n, [0.0; 4]);
-    if skin.wrinkle_spacing_m <= 0.0 {
+    let lines = skin.wrinkle_spacing_m > 0.0;
+    if !lines && skin.thickening <= 0.0 {
         return;
     }
     // Green strain E = (F^T F - I) / 2 of each triangle, as a symmetric
@@ -283,6 +456,8 @@ pub fn measure(
         .collect();
     let spacing = skin.wrinkle_spacing_m as f32;
     let onset = skin.wrinkle_onset_strain as f32;
+    // Each vertex's area lost (W4), for the cheeks' compartments.
+    let mut lost = vec![0.0f32; n];
     for (i, out) in out.iter_mut().enumerate() {
         // W1: the strain averaged over the vertex's disk.
         let mut e = [0.0f32; 7];
@@ -303,8 +478,27 @@ pub fn measure(
         // W3: phases in wavelengths along each axis, of the skin's present
         // place (lines run straight across the squeeze that makes them).
         let [tx, ty] = basis.tangents[i];
-        let [sx, sy] = buckle(along(tx), along(ty), onset);
-        *out = [sx, sy, p.x / spacing, p.y / spacing];
+        if lines {
+            let share = basis.line_share[i];
+            let [sx, sy] = buckle(along(tx), along(ty), onset);
+            *out = [share * sx, share * sy, p.x / spacing, p.y / spacing];
+        }
+        lost[i] = (1.0 - e[6]).clamp(0.0, MAX_THICKENING);
+        let depth = basis.depth[i];
+        if depth > 0.0 && lost[i] > 0.0 {
+            deformed[i] += mesh.normals[i] * (depth * lost[i]); // (W4)
+        }
+    }
+    // W4 over the cheeks: the volume a compartment's skin gathers spreads
+    // over the compartment.
+    for cheek in &basis.cheeks {
+        let gathered: f32 = cheek.iter().map(|c| c.volume * lost[c.vertex as usize]).sum();
+        if gathered > 0.0 {
+            for c in cheek {
+                let i = c.vertex as usize;
+                deformed[i] += mesh.normals[i] * (gathered * c.profile).min(MAX_CHEEK_BULGE);
+            }
+        }
     }
 }
 
@@ -328,18 +522,18 @@ mod tests {
             &f.mesh,
             &f.wrinkle_basis,
             &skin,
-            &f.mesh.positions,
+            &mut f.mesh.positions.clone(),
             &mut out,
         );
         assert!(out.iter().all(|w| w[0] == 0.0 && w[1] == 0.0));
         let r = glam::Quat::from_rotation_y(0.7) * glam::Quat::from_rotation_x(-0.3);
-        let moved: Vec<Vec3> = f
+        let mut moved: Vec<Vec3> = f
             .mesh
             .positions
             .iter()
             .map(|&p| r * p + Vec3::new(0.1, -0.2, 0.3))
             .collect();
-        measure(&f.mesh, &f.wrinkle_basis, &skin, &moved, &mut out);
+        measure(&f.mesh, &f.wrinkle_basis, &skin, &mut moved, &mut out);
         assert!(out.iter().all(|w| w[0] == 0.0 && w[1] == 0.0));
     }
 
@@ -351,14 +545,65 @@ mod tests {
         let f = face();
         let skin = SkinParams::default();
         for scale in [0.65, 0.8] {
-            let shrunk: Vec<Vec3> = f.mesh.positions.iter().map(|&p| scale * p).collect();
+            let mut shrunk: Vec<Vec3> = f.mesh.positions.iter().map(|&p| scale * p).collect();
             let mut out = Vec::new();
-            measure(&f.mesh, &f.wrinkle_basis, &skin, &shrunk, &mut out);
+            measure(&f.mesh, &f.wrinkle_basis, &skin, &mut shrunk, &mut out);
             let front = f.mesh.normals.iter().zip(&out).filter(|(n, _)| n.z > 0.8);
             for (_, w) in front {
                 assert!(w[0] < 0.05 && w[1] < 0.05, "{scale}: {w:?}");
             }
         }
+    }
+
+    /// W4: a smile (AU 6 + 12) thickens the cheek by millimetres and
+    /// leaves the forehead where it was; the nasolabial fold's tether
+    /// stays down while the cheek beside it bulges, which is the fold.
+    #[test]
+    fn a_smile_bulges_the_cheek_over_the_fold() {
+        let f = Face::new(MeshParams { rows: 64 }, FaceParams::default_params());
+        let a = crate::emotion::emotion_activation(
+            &f.params,
+            crate::tables::Emotion::Happiness,
+            1.0,
+        );
+        let mut pos = vec![Vec3::ZERO; f.mesh.positions.len()];
+        f.rig.deform(&f.mesh, &a, &mut pos);
+        let before = pos.clone();
+        let mut out = Vec::new();
+        measure(&f.mesh, &f.wrinkle_basis, &f.params.skin, &mut pos, &mut out);
+        let lift = |i: usize| (pos[i] - before[i]).dot(f.mesh.normals[i]);
+        let l = &f.mesh.landmarks;
+        let near = |c: Vec3| {
+            (0..pos.len())
+                .min_by(|&a, &b| {
+                    let d = |i: usize| f.mesh.positions[i].distance_squared(c);
+                    d(a).total_cmp(&d(b))
+                })
+                .unwrap()
+        };
+        let forehead = lift(near(l.forehead_mid));
+        let [a, b] = fold_line(l);
+        let mid = (a + b) / 2.0;
+        let along = (b - a).normalize();
+        let beside = mid + Vec2::new(-along.y, along.x).abs() * 0.008;
+        let rest = &f.mesh.positions;
+        let at = |c: Vec2, r: f32| -> Vec<f32> {
+            (0..pos.len())
+                .filter(|&i| rest[i].z > 0.0 && Vec2::new(rest[i].x, rest[i].y).distance(c) < r)
+                .map(lift)
+                .collect()
+        };
+        let fold = at(mid, 0.003).into_iter().fold(f32::INFINITY, f32::min);
+        let cheek = at(beside, 0.004).into_iter().fold(0.0f32, f32::max);
+        println!(
+            "bulge: cheek {:.2} mm, fold {:.2} mm, forehead {:.2} mm",
+            cheek * 1e3,
+            fold * 1e3,
+            forehead * 1e3
+        );
+        assert!(cheek > 0.0015, "cheek {cheek}");
+        assert!(forehead.abs() < 1e-4, "forehead {forehead}");
+        assert!(fold < 0.5 * cheek, "fold {fold} vs cheek {cheek}");
     }
 
     /// W2: the stronger squeeze's lines take up its excess over the
@@ -380,14 +625,14 @@ mod tests {
         // (lines across the brow) takes it up, the horizontal one is idle.
         let f = face();
         let skin = SkinParams::default();
-        let squeezed: Vec<Vec3> = f
+        let mut squeezed: Vec<Vec3> = f
             .mesh
             .positions
             .iter()
             .map(|&p| Vec3::new(p.x, 0.6 * p.y, p.z))
             .collect();
         let mut out = Vec::new();
-        measure(&f.mesh, &f.wrinkle_basis, &skin, &squeezed, &mut out);
+        measure(&f.mesh, &f.wrinkle_basis, &skin, &mut squeezed, &mut out);
         let (i, p) = f
             .mesh
             .positions

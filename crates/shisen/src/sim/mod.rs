@@ -669,8 +669,12 @@ impl Sim {
         // through vision's and the guard's latencies) and while it attacks:
         // postural muscles are set before a voluntary movement of one's own
         // (anticipatory postural adjustments), so its lunge into a punch
-        // does not throw its head back.
-        let bracing = self.behaviour.action() != ActionKind::Idle;
+        // does not throw its head back. A staggered VH covers up and tucks
+        // its chin as boxers are drilled to (it stays braced while it gives
+        // ground): unbraced, a second hard blow on an exhausted, staggered
+        // VH drove its neck 20 deg past its range in a 3-hour soak.
+        let bracing =
+            self.behaviour.action() != ActionKind::Idle || self.effort.staggered(self.time());
         self.neck
             .step(&p.neck, stretch, bracing, self.time(), self.model.dt);
         self.world

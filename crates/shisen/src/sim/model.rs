@@ -132,8 +132,10 @@ impl Model {
         seed.blink.arousal_gain = 0.0;
         seed.blink.levator_gain = 1.0;
         seed.blink.levator_max_raise_m = None;
+        seed.blink.cheek_lid_rise_m = 0.0;
         seed.skin.wrinkle_spacing_m = 0.0;
         seed.skin.pull_spread_m = 0.0;
+        seed.skin.thickening = 0.0;
         seed.lips.seal_k = None;
         seed.reflex.enabled = false;
         seed.prototypes = None;
