@@ -48,6 +48,19 @@ fn eye_centre(l: &Landmarks, side: Side) -> Vec3 {
 const ORBITAL_REACH: f32 = 0.05;
 const ORBITAL_FADE: f32 = 0.012;
 
+/// The factor on channel `kind`'s field at rest point `p` (eye centre
+/// `ec`): the orbital part's field fades out toward its mask's edges (cut
+/// off, it stepped the skin along a line down the cheek beside the eye in
+/// every smile); 1 for every other channel.
+fn mask_fade(kind: MuscleKind, p: Vec3, ec: Vec3) -> f32 {
+    if kind != MuscleKind::OculiOrbital {
+        return 1.0;
+    }
+    let side = ((ORBITAL_REACH - (p.x - ec.x).abs()) / ORBITAL_FADE).clamp(0.0, 1.0);
+    let back = ((p.z - ec.z) / ORBITAL_FADE).clamp(0.0, 1.0);
+    smooth(side) * smooth(back)
+}
+
 /// Smoothstep on [0, 1].
 fn smooth(x: f32) -> f32 {
     x * x * (3.0 - 2.0 * x)
@@ -215,18 +228,7 @@ impl Rig {
                 if masked {
                     continue;
                 }
-                // The orbital part's field fades out toward its mask's
-                // edges: cut off, it stepped the skin along a line down
-                // the cheek beside the eye in every smile.
-                let fade = match id.kind {
-                    MuscleKind::OculiOrbital => {
-                        let side = ((ORBITAL_REACH - (p.x - ec.x).abs()) / ORBITAL_FADE).min(1.0);
-                        let back = ((p.z - ec.z) / ORBITAL_FADE).min(1.0);
-                        smooth(side) * smooth(back)
-                    }
-                    _ => 1.0,
-                };
-                let d = fade * g.displacement(p, 1.0);
+                let d = mask_fade(id.kind, p, ec) * g.displacement(p, 1.0);
                 if d != Vec3::ZERO {
                     f.index.push(i as u32);
                     f.delta.push(d);
@@ -399,16 +401,19 @@ mod tests {
         }
     }
 
-    /// With no spread the fields are Waters' own (F1, F6 at k = 1).
+    /// With no spread the fields are Waters' own (F1, F6 at k = 1), the
+    /// orbital part's faded at its mask.
     #[test]
     fn no_spread_keeps_waters_fields() {
         let mut params = FaceParams::default_params();
         params.skin.pull_spread_m = 0.0;
         let mesh = HeadMesh::generate(MeshParams { rows: 32 });
         let rig = Rig::build(&mesh, &params);
-        for ((_, g), f) in rig.muscles.iter().zip(&rig.fields) {
+        for ((id, g), f) in rig.muscles.iter().zip(&rig.fields) {
+            let ec = eye_centre(&mesh.landmarks, id.side);
             for (&i, d) in f.index.iter().zip(&f.delta) {
-                assert_eq!(*d, g.displacement(mesh.positions[i as usize], 1.0));
+                let p = mesh.positions[i as usize];
+                assert_eq!(*d, mask_fade(id.kind, p, ec) * g.displacement(p, 1.0));
             }
         }
     }
