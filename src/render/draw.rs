@@ -30,6 +30,9 @@ pub enum MeshKey {
     /// The VH's eyelashes ([`Frame::lashes`](crate::render::Frame::lashes), a triangle list in the face
     /// frame).
     Lashes,
+    /// The VH's hair standing off its scalp ([`Frame::hair`](crate::render::Frame::hair), a
+    /// triangle list in the face frame).
+    HairShell,
     /// The boxing ring and the hall round it, one static mesh coloured
     /// per vertex ([`super::ring::mesh`]).
     Ring,
@@ -111,11 +114,14 @@ pub enum Material {
     Hair = 6,
     /// A light source: its colour as it is, unlit, casting nothing.
     Emissive = 7,
+    /// A head of hair: strands combed back over the scalp, their
+    /// highlight drawn across them (Kajiya & Kay 1989).
+    Scalp = 8,
 }
 
 impl Material {
     /// Every material.
-    pub const ALL: [Material; 8] = [
+    pub const ALL: [Material; 9] = [
         Material::Plain,
         Material::Eye,
         Material::Floor,
@@ -124,6 +130,7 @@ impl Material {
         Material::Body,
         Material::Hair,
         Material::Emissive,
+        Material::Scalp,
     ];
 
     /// Its vertex and fragment stages (`shader.wgsl`).
@@ -137,6 +144,7 @@ impl Material {
             Material::Body => ("vs_painted", "fs_body"),
             Material::Hair => ("vs_mesh", "fs_hair"),
             Material::Emissive => ("vs_mesh", "fs_emissive"),
+            Material::Scalp => ("vs_mesh", "fs_scalp"),
         }
     }
 

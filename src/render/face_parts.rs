@@ -96,8 +96,7 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     // The tongue lies on the mouth's floor behind the lower incisors, its
     // back under the palate, and drops with the jaw; the part behind the
     // cavity's front is hidden by it.
-    let tongue_rest =
-        lower_rest + Vec3::new(0.0, -TONGUE_HALF[1] - 0.003, -TONGUE_HALF[2] - 0.004);
+    let tongue_rest = lower_rest + Vec3::new(0.0, -TONGUE_HALF[1] + 0.001, -TONGUE_HALF[2] - 0.004);
     draws.push(ellipsoid(
         tongue_rest + shisen_face::muscle::jaw_rotation(tongue_rest - jaw.pivot, theta)
             - Vec3::Z * push,
@@ -132,7 +131,8 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
                 // teeth, and the gum's papillae at their necks.
                 let block = |centre: Vec3, half: Vec3, color| Draw {
                     mesh: MeshKey::Tooth,
-                    model: face_frame * Mat4::from_scale_rotation_translation(half, rotation, centre),
+                    model: face_frame
+                        * Mat4::from_scale_rotation_translation(half, rotation, centre),
                     color,
                     material: Material::Plain,
                 };
@@ -142,7 +142,10 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
                     shaded(TEETH, shade),
                 ));
                 draws.push(block(
-                    place(up * (height + GUM_HEIGHT / 2.0 - GUM_OVER), 1.4 * TOOTH_HALF_DEPTH),
+                    place(
+                        up * (height + GUM_HEIGHT / 2.0 - GUM_OVER),
+                        1.4 * TOOTH_HALF_DEPTH,
+                    ),
                     Vec3::new(width * 0.56, GUM_HEIGHT / 2.0, TOOTH_HALF_DEPTH),
                     shaded(GUM, shade),
                 ));
@@ -259,6 +262,53 @@ const LIP_REACH: f32 = 0.015;
 /// Lips further apart than this show the teeth, m.
 const TEETH_SHOW_GAP: f32 = 0.003;
 
+/// The caruncles: a small, moist, pink mound in each eye's inner corner,
+/// on the deformed lids' meeting point, a little behind it and toward
+/// the eye, in the face frame.
+pub(super) fn caruncles(
+    rims: &shisen_face::mesh::Rims,
+    face: &[Vertex],
+    face_frame: Mat4,
+) -> Vec<Draw> {
+    rims.upper_lid
+        .iter()
+        .zip(&rims.lower_lid)
+        .filter(|(u, l)| !u.is_empty() && !l.is_empty())
+        .map(|(upper, lower)| {
+            let at = |i: u32| Vec3::from_array(face[i as usize].pos);
+            let ends = [upper[0], upper[upper.len() - 1]];
+            let inner = ends
+                .into_iter()
+                .map(at)
+                .min_by(|a, b| a.x.abs().total_cmp(&b.x.abs()))
+                .expect("two ends");
+            let lower_inner = [lower[0], lower[lower.len() - 1]]
+                .into_iter()
+                .map(at)
+                .min_by(|a, b| a.x.abs().total_cmp(&b.x.abs()))
+                .expect("two ends");
+            let corner = (inner + lower_inner) / 2.0;
+            let toward_eye = Vec3::X * corner.x.signum() * CARUNCLE_HALF[0];
+            Draw {
+                mesh: MeshKey::Sphere,
+                model: face_frame
+                    * Mat4::from_scale_rotation_translation(
+                        Vec3::from_array(CARUNCLE_HALF),
+                        Quat::IDENTITY,
+                        corner + toward_eye - Vec3::Z * CARUNCLE_HALF[2],
+                    ),
+                color: CARUNCLE,
+                material: Material::Plain,
+            }
+        })
+        .collect()
+}
+
+/// Half sizes of a caruncle (across, up, deep), m: about 4 by 5 mm
+/// (our reading of anatomy atlases), and its colour.
+const CARUNCLE_HALF: [f32; 3] = [0.0014, 0.0019, 0.0012];
+const CARUNCLE: [f32; 4] = [0.56, 0.30, 0.28, 1.0];
+
 /// Lashes, m: upper and lower length at mid-lid (Thibaut et al. 2010,
 /// Br. J. Dermatol. 163:1023: upper 8-12 mm, lower 6-8 mm; shorter here,
 /// seen curled).
@@ -266,6 +316,12 @@ const LASH_LENGTH: [f32; 2] = [0.006, 0.0018];
 /// Thickness of the lid at its margin, m (our choice: a thin ledge that
 /// reads as the lid's edge).
 const LID_THICKNESS: f32 = 0.0018;
+/// The tear meniscus: the share of the lower lid's ledge it covers from
+/// the eyeball out (about 0.3 mm of the 1.8 mm margin: the meniscus is
+/// 0.2-0.3 mm high, Holly 1985), and its colour, the margin's seen
+/// through a wet film that reflects the room.
+const TEAR_LINE: f32 = 0.2;
+const TEAR: [f32; 4] = [0.95, 0.80, 0.78, 1.0];
 /// The lid margin's moist, pinker skin.
 const LID_MARGIN: [f32; 4] = [0.55, 0.30, 0.27, 1.0];
 const LASH: [f32; 4] = {
@@ -277,10 +333,12 @@ const LASH: [f32; 4] = {
 /// have 90-160 upper and 70-80 lower lashes in several rows; one row of
 /// strands this close, each a fraction of a pixel wide at sparring
 /// distance, reads as the same soft dark fringe).
-const LASH_SPACING: f32 = 0.0008;
+const LASH_SPACING: f32 = 0.0005;
 /// Width of a lash at its root, m (a lash is about 0.1 mm thick; drawn
 /// wider, as several lashes of a row overlap).
-const LASH_WIDTH: f32 = 0.0008;
+const LASH_WIDTH: f32 = 0.0005;
+/// Straight pieces a lash's curve is drawn with.
+const LASH_SEGMENTS: usize = 4;
 /// Depth of the upper lashes' dense roots along the lid's edge, m (our
 /// choice: about a millimetre, where the lashes stand in two or three rows,
 /// and the lid's edge reads dark in any light).
@@ -322,6 +380,15 @@ pub(super) fn lashes(rims: &shisen_face::mesh::Rims, face: &[Vertex]) -> Vec<Ver
             let quad = [a[0], b[0], b[1], a[0], b[1], a[1]];
             let normal = Vec3::Y * -lift;
             out.extend(quad.map(|p| Vertex::coloured(p, normal, LID_MARGIN)));
+            // The tear film's meniscus along the lower lid's inner edge,
+            // against the eyeball: a thin wet line catching the light.
+            if lift < 0.0 {
+                let inner = |e: [Vec3; 2]| [e[1].lerp(e[0], TEAR_LINE), e[1]];
+                let (a, b) = (inner(a), inner(b));
+                let quad = [a[0], b[0], b[1], a[0], b[1], a[1]];
+                let lifted = quad.map(|p| p + Vec3::Y * 0.00005);
+                out.extend(lifted.map(|p| Vertex::coloured(p, Vec3::Y, TEAR)));
+            }
         }
         // Arc length along the deformed rim.
         let mut at = vec![0.0f32; n];
@@ -367,26 +434,70 @@ pub(super) fn lashes(rims: &shisen_face::mesh::Rims, face: &[Vertex]) -> Vec<Ver
             let outward = if outer_last { along } else { -along };
             // A fixed, irregular pattern of length and lean.
             let jitter = |m: f32| (k as f32 * m).sin();
-            let l = len * (1.0 - xi * xi).max(0.0).sqrt() * (0.85 + 0.15 * jitter(12.9898));
+            let l = len * (1.0 - xi * xi).max(0.0).sqrt() * (0.8 + 0.2 * jitter(12.9898));
             if l <= 0.0 {
                 continue;
             }
-            let lean = outward * (0.25 * outer.max(0.0) + 0.08 * jitter(78.233));
+            let lean = outward * (0.25 * outer.max(0.0) + 0.18 * jitter(78.233));
             let out_dir = (nrm + Vec3::Z).normalize_or(Vec3::Z);
-            let mid = root + (out_dir * 0.6 + lean * 0.3) * l + Vec3::Y * lift * l * 0.08;
-            // Curled: out from the lid, then up (down for the lower lid).
-            let tip = root + (out_dir * 0.7 + lean) * l + Vec3::Y * lift * l * 0.6;
+            // A fine strand curling away from the lid: out along the lid's
+            // normal, then more and more up (down for the lower lid), and
+            // tapering from its root to a point.
+            let at = |f: f32| {
+                root + (out_dir * 0.75 + lean) * (l * f) + Vec3::Y * (lift * l * 0.65 * f * f)
+            };
             let w = along * (0.5 * LASH_WIDTH);
-            let strand = [
-                [root - w, root + w, mid + w * 0.5],
-                [root - w, mid + w * 0.5, mid - w * 0.5],
-                [mid - w * 0.5, mid + w * 0.5, tip],
-            ];
-            for t in strand {
-                let normal = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or(Vec3::Z);
-                out.extend(t.map(|p| Vertex::coloured(p, normal, LASH)));
+            let segments = LASH_SEGMENTS as f32;
+            for j in 0..LASH_SEGMENTS {
+                let (f0, f1) = (j as f32 / segments, (j + 1) as f32 / segments);
+                let (a, b) = (at(f0), at(f1));
+                let (wa, wb) = (w * (1.0 - f0), w * (1.0 - f1));
+                let quad = [a - wa, a + wa, b + wb, a - wa, b + wb, b - wb];
+                let normal = (a + wa - (a - wa)).cross(b - a).normalize_or(Vec3::Z);
+                out.extend(quad.map(|p| Vertex::coloured(p, normal, LASH)));
             }
         }
     }
     out
+}
+
+/// Depth of a short crop's hair standing off the scalp, m (our choice for
+/// hair 1-2 cm long lying back: about 6 mm), reached this far above the
+/// hairline, where the hairs grow out of the skin lying flat.
+const HAIR_DEPTH: f32 = 0.006;
+const HAIR_RISE: f32 = 0.014;
+/// The shell stands at least this far off the skin, m, so the two never
+/// fight for a pixel's depth where it meets the hairline.
+const HAIR_LIFT: f32 = 0.0003;
+/// How far single hairs stray below the hairline's smooth course, m (the
+/// shader's wobble, `fs_scalp`).
+const HAIRLINE_WOBBLE: f32 = 0.002;
+const HAIR: [f32; 4] = {
+    let h = shisen_face::appearance::FaceStyle::DEFAULT.hair;
+    [h[0], h[1], h[2], 1.0]
+};
+
+/// The hair as a shell over the scalp: every face triangle above the
+/// hairline, lifted off the deformed skin along its normals by the hair's
+/// depth, which grows from nothing at the hairline (the shell meets the
+/// skin there, whose painted hair carries on under it) to [`HAIR_DEPTH`].
+/// It gives the head its silhouette of hair and a surface whose strands
+/// catch the light. A triangle list, face frame.
+pub(super) fn hair_shell(triangles: &[[u32; 3]], face: &[Vertex]) -> Vec<Vertex> {
+    let height = |i: u32| shisen_face::appearance::hair_height(&face[i as usize].paint);
+    // The vertex colour's alpha carries the height above the hairline, m:
+    // the shader cuts the shell along the hairline between vertices.
+    let lift = |i: u32| {
+        let v = &face[i as usize];
+        let h = height(i);
+        let t = (h / HAIR_RISE).clamp(0.0, 1.0);
+        let depth = HAIR_LIFT + HAIR_DEPTH * t * (2.0 - t);
+        let (p, n) = (Vec3::from_array(v.pos), Vec3::from_array(v.normal));
+        Vertex::coloured(p + n * depth, n, [HAIR[0], HAIR[1], HAIR[2], h])
+    };
+    triangles
+        .iter()
+        .filter(|t| t.iter().any(|&i| height(i) >= -HAIRLINE_WOBBLE))
+        .flat_map(|t| t.map(lift))
+        .collect()
 }

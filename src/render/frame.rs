@@ -14,7 +14,7 @@ use shisen_gaze::util::math::{dir_from_yaw_pitch, yaw_pitch_of};
 use super::body::{BodyMesh, BodyStyle, Pose, SKIN, avatar_pose, vh_pose};
 use super::camera::{Camera, View};
 use super::draw::{Draw, Label, LineVertex, Material, MeshKey};
-use super::face_parts::{lashes, mouth};
+use super::face_parts::{caruncles, hair_shell, lashes, mouth};
 use super::geometry::Vertex;
 
 /// Overlay toggles.
@@ -42,6 +42,8 @@ pub struct Frame {
     /// Eyelashes on the deformed lid rims, face frame, a triangle list
     /// ([`MeshKey::Lashes`]).
     pub lashes: Vec<Vertex>,
+    /// The VH's hair standing off its scalp: a triangle list, face frame.
+    pub hair: Vec<Vertex>,
     /// The VH's posed body, world frame ([`MeshKey::Body`], indexed by
     /// `Looks::indices`).
     pub body: Vec<Vertex>,
@@ -260,6 +262,7 @@ impl Frame {
         let face = face_vertices(sim);
         draws.extend(mouth(sim, &face, face_frame));
         let lashes = lashes(&sim.model().face.mesh.rims, &face);
+        draws.extend(caruncles(&sim.model().face.mesh.rims, &face, face_frame));
         // Ears, rooted in the head just in front of where the face mesh's
         // ear bumps stand (the lobe landmark), the right one mirrored.
         let lobe = sim.model().face.mesh.landmarks.ear_lobe;
@@ -280,6 +283,13 @@ impl Frame {
             color: WHITE,
             material: Material::Hair,
         });
+        let hair = hair_shell(&sim.model().face.mesh.triangles, &face);
+        draws.push(Draw {
+            mesh: MeshKey::HairShell,
+            model: face_frame,
+            color: WHITE,
+            material: Material::Scalp,
+        });
         // The ring and the hall, last (behind the fighters).
         draws.extend(super::ring::draws());
         let mut frame = Frame {
@@ -287,6 +297,7 @@ impl Frame {
             draws,
             face,
             lashes,
+            hair,
             body,
             avatar,
             plan: w.plan.clone(),

@@ -183,11 +183,12 @@ pub fn floor() -> MeshData {
 /// out of the head, +Y up, +Z forward, the origin where its front edge
 /// joins the head. About 62 mm tall and 34 mm wide (adult pinna, Sforza et
 /// al. 2009, Int. J. Pediatr. Otorhinolaryngol. 73:1331), set back 15 deg,
-/// flaring out at the back, with a cupped concha and a rolled rim (helix)
-/// and a lobe narrower than the top.
+/// flaring out at the back, with a deep concha, a rim rolled forward (the
+/// helix) round its top and back, the antihelix's ridge inside it, and a
+/// lobe narrower than the top.
 pub fn ear() -> MeshData {
-    const AROUND: u32 = 40;
-    const ACROSS: u32 = 10;
+    const AROUND: u32 = 48;
+    const ACROSS: u32 = 28;
     let (half_h, half_w) = (0.031, 0.017);
     let tilt = 15f32.to_radians();
     let point = |theta: f32, v: f32| {
@@ -197,10 +198,22 @@ pub fn ear() -> MeshData {
         // Back part (theta near pi) stands off the head most.
         let back = 0.5 * (1.0 - theta.cos());
         let flare = 0.002 + 0.013 * back * v;
-        // Cupped concha inside, a rolled helix at the rim.
-        let cup = -0.005 * (1.0 - (v / 0.75).min(1.0)).powi(2) * (1.0 - 0.5 * back);
-        let helix = 0.0035 * (-((v - 0.9) / 0.06).powi(2)).exp();
-        let x = flare + cup + helix * back.max(0.3);
+        // The concha: a deep bowl before the ear canal, in the ear's
+        // lower middle.
+        let cup = -0.008 * (1.0 - (v / 0.6).min(1.0)).powi(2) * (1.0 - 0.6 * back);
+        // The helix: a rim rolled forward over the ear's edge, round its
+        // top and back (not at the lobe).
+        let upper = (theta.sin() + 0.3).clamp(0.0, 1.0);
+        let rim = 0.004 * (-((v - 0.86) / 0.06).powi(2)).exp()
+            - 0.005 * ((v - 0.93) / 0.07).max(0.0).powi(2);
+        let helix = rim * (0.35 + 0.65 * upper) * back.max(0.3);
+        // The antihelix: a ridge inside the helix over the upper back,
+        // with a hollow (the scapha) between them.
+        let antihelix = (0.0028 * (-((v - 0.62) / 0.07).powi(2)).exp()
+            - 0.0015 * (-((v - 0.76) / 0.05).powi(2)).exp())
+            * upper
+            * back;
+        let x = flare + cup + helix + antihelix;
         let (y, z) = (b * v, a * v - half_w);
         // Set back: rotate about X (the ear's top leans back).
         Vec3::new(

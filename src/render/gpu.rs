@@ -793,6 +793,8 @@ impl Renderer {
         self.dynamic_mesh(MeshKey::Face, &frame.face, face_triangles.as_flattened());
         let lashes: Vec<u32> = (0..frame.lashes.len() as u32).collect();
         self.dynamic_mesh(MeshKey::Lashes, &frame.lashes, &lashes);
+        let hair: Vec<u32> = (0..frame.hair.len() as u32).collect();
+        self.dynamic_mesh(MeshKey::HairShell, &frame.hair, &hair);
         let looks = Looks::of(&frame.plan);
         self.dynamic_mesh(
             MeshKey::Body,
@@ -961,9 +963,11 @@ impl Renderer {
     /// The GPU mesh of a key (a dynamic one once uploaded).
     fn mesh_of(&self, key: MeshKey) -> Option<&GpuMesh> {
         match key {
-            MeshKey::Face | MeshKey::Body | MeshKey::Avatar | MeshKey::Lashes => {
-                self.dynamic.get(&key).map(|(m, _)| m)
-            }
+            MeshKey::Face
+            | MeshKey::Body
+            | MeshKey::Avatar
+            | MeshKey::Lashes
+            | MeshKey::HairShell => self.dynamic.get(&key).map(|(m, _)| m),
             key => self.meshes.get(&key),
         }
     }

@@ -109,6 +109,9 @@ struct PaintedOut {
     // Face: lips, brow height, hair, brow half-width. Body: the signed
     // distance inside one border and the colour there.
     @location(4) paint: vec4<f32>,
+    // The point in the mesh's own frame (the face's: x right, y up, z out
+    // of the face), for the skin's and the hairs' fine detail.
+    @location(5) local: vec3<f32>,
 };
 
 @vertex
@@ -127,7 +130,50 @@ fn vs_painted(
     o.color = color;
     o.wrinkle = wrinkle;
     o.paint = paint;
+    o.local = pos;
     return o;
+}
+
+// A pseudo-random value in [0, 1) per integer cell.
+fn hash2(c: vec2<f32>) -> f32 {
+    return fract(sin(dot(c, vec2<f32>(12.9898, 78.233))) * 43758.5453);
+}
+
+// Fine hair strokes at `q` (m, in the surface's plane) lying along `dir`:
+// strands `gap` apart, each broken into lengths of about `len` with
+// random offsets and gaps, tapered at both ends. 1 on a strand, 0
+// between; where the strands are finer than a pixel they fade into their
+// mean cover, `mean`, so they neither alias nor shimmer.
+fn strokes(q: vec2<f32>, dir: vec2<f32>, gap: f32, len: f32, mean: f32) -> f32 {
+    let across = dot(q, vec2<f32>(-dir.y, dir.x)) / gap;
+    let lane = floor(across);
+    let along = dot(q, dir) / len + hash2(vec2<f32>(lane, 1.0));
+    let piece = floor(along);
+    let r = hash2(vec2<f32>(lane, piece));
+    let f = fract(across) - 0.5 + 0.3 * (r - 0.5);
+    let at = fract(along);
+    let strand = (1.0 - smoothstep(0.12, 0.32, abs(f)))
+        * smoothstep(0.0, 0.25, at) * (1.0 - smoothstep(0.6, 1.0, at))
+        * step(0.15, r);
+    let sharp = clamp(1.5 - 2.0 * fwidth(across), 0.0, 1.0);
+    return mix(mean, strand, sharp);
+}
+
+// Skin pores: a shallow pit in each cell of a jittered grid `cell` wide,
+// as a tilt of the normal `n` toward its centre; nothing where a cell is
+// under two pixels (the filtered surface is smooth).
+fn pores(n: vec3<f32>, q: vec2<f32>, ax: vec3<f32>, ay: vec3<f32>, cell: f32) -> vec3<f32> {
+    let u = q / cell;
+    let fade = clamp(1.0 - 2.0 * max(fwidth(u.x), fwidth(u.y)), 0.0, 1.0);
+    if (fade <= 0.0) {
+        return n;
+    }
+    let c = floor(u);
+    let jitter = vec2<f32>(hash2(c), hash2(c + vec2<f32>(17.0, 3.0))) - 0.5;
+    let f = fract(u) - 0.5 - 0.4 * jitter;
+    let r2 = dot(f, f) * 16.0;
+    let slope = 0.35 * fade * exp2(-r2 * 1.4427);
+    return normalize(n - (ax * f.x + ay * f.y) * slope);
 }
 
 // Eye: PUPIL_COS, LIMBUS_COS and IRIS_COS, the cosines of the angular radii
@@ -154,7 +200,14 @@ fn eye_colour(local: vec3<f32>) -> vec3<f32> {
     // corners, where it curves away under the lids' shade and shows its
     // vessels (our choice; a uniform white reads as a painted disc).
     let t = clamp((IRIS_COS - c) / (IRIS_COS - 0.45), 0.0, 1.0);
-    return mix(vec3<f32>(0.90, 0.88, 0.84), vec3<f32>(0.70, 0.62, 0.60), t * t);
+    var white = mix(vec3<f32>(0.82, 0.79, 0.74), vec3<f32>(0.66, 0.56, 0.53), t * t);
+    // Fine vessels, more toward the corners: two crossing wavy families.
+    let a = atan2(d.y, d.x);
+    let w1 = max(sin(a * 11.0 + c * 23.0) * sin(a * 7.0 - c * 31.0), 0.0);
+    let w2 = w1 * w1;
+    let vein = (w2 * w2) * (w2 * w2) * t;
+    white = mix(white, vec3<f32>(0.62, 0.25, 0.22), 0.45 * vein);
+    return white;
 }
 
 // Skin: light wraps past the terminator (scattered under the surface)
@@ -215,8 +268,24 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
     let aa = max(fwidth(inside), vec3<f32>(1.0));
     let cover = smoothstep(-aa, aa, inside);
     base = mix(base, g.face_regions[0].rgb, cover.x);
-    base = mix(base, g.face_regions[1].rgb, cover.y);
-    base = mix(base, g.face_regions[2].rgb, cover.z);
+    // Brows as hairs: strokes along the hairs' lie, rising steeply out of
+    // the brow's head and lying flatter toward the tail (our reading of how
+    // brow hairs grow), denser in the body, over a faint base.
+    let bx = abs(v.local.x);
+    if (cover.y > 0.0) {
+        let rise = mix(1.1, 0.15, clamp((bx - 0.012) / 0.03, 0.0, 1.0));
+        let hairs = strokes(vec2<f32>(bx, v.local.y), vec2<f32>(cos(rise), sin(rise)), 0.0006, 0.007, 0.7);
+        base = mix(base, g.face_regions[1].rgb, cover.y * (0.45 + 0.55 * hairs));
+    }
+    // The hair: a short crop's strands running back over the scalp, the
+    // hairline broken by single hairs rather than ruled.
+    if (v.paint.z > -2.0) {
+        let hair_dir = normalize(vec2<f32>(0.0, 1.0));
+        let hairs = strokes(vec2<f32>(v.local.x, v.local.y + 0.6 * v.local.z), hair_dir, 0.0005, 0.008, 0.6);
+        let edge = clamp((v.paint.z + 1.5) / 3.0, 0.0, 1.0);
+        let reach = cover.z + (1.0 - cover.z) * hairs * edge * 0.8;
+        base = mix(base, g.face_regions[2].rgb * (0.75 + 0.5 * hairs), reach);
+    }
     // Expression wrinkles (docs/model/face.md W1-W3): two families of
     // lines, across the face's vertical axis (phase y / L) and across
     // its horizontal one (x / L), each of height A cos(2 pi phase), so
@@ -250,6 +319,15 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
             min(v.wrinkle.x, 1.0) * mix(0.375, vx, rx),
             min(v.wrinkle.y, 1.0) * mix(0.375, vy, ry),
         );
+    }
+    // Pores, finer on the forehead than over the nose and cheeks (our
+    // choice of 0.5-0.8 mm spacing), on bare skin only.
+    let bare = (1.0 - cover.x) * (1.0 - cover.z);
+    if (bare > 0.5) {
+        let ax = (inst.model * vec4<f32>(1.0, 0.0, 0.0, 0.0)).xyz;
+        let ay = (inst.model * vec4<f32>(0.0, 1.0, 0.0, 0.0)).xyz;
+        let cell = mix(0.0008, 0.0005, clamp(v.local.y / 0.04, 0.0, 1.0));
+        n = pores(n, v.local.xy, ax, ay, cell);
     }
     let top = SKIN_TOP * top_light(v.world, normalize(v.normal), 0.0);
     return vec4<f32>(skin(base, n, view_dir, (1.0 - 0.33 * furrow) * tilt, top), 1.0);
@@ -296,9 +374,46 @@ fn fs_hair(v: VOut) -> @location(0) vec4<f32> {
     return plain_lit(v, inst.color.rgb * v.color.rgb, 0.0);
 }
 
+// The eye: a wet surface. Over the iris the normal is the cornea's, a
+// sphere of 7.8 mm radius (Gullstrand's schematic eye) standing out of the
+// 12 mm eyeball and meeting it at the limbus: its centre lies in front of
+// the eye's centre of rotation, so the light's reflection slides over the
+// iris as the eye turns, as a person's does. The highlight is a tear
+// film's: small and bright.
+const CORNEA_R: f32 = 0.65;
 @fragment
 fn fs_eye(v: VOut) -> @location(0) vec4<f32> {
-    return plain_lit(v, eye_colour(v.local), 0.8);
+    let d = normalize(v.local);
+    var n_local = d;
+    if (d.z > IRIS_COS) {
+        let s2 = 1.0 - IRIS_COS * IRIS_COS;
+        let c = IRIS_COS - sqrt(max(CORNEA_R * CORNEA_R - s2, 0.0));
+        n_local = normalize(d - vec3<f32>(0.0, 0.0, c));
+    }
+    var n = normalize((inst.normal * vec4<f32>(n_local, 0.0)).xyz);
+    let view_dir = normalize(g.camera.xyz - v.world);
+    if (dot(n, view_dir) < 0.0) {
+        n = -n;
+    }
+    let base = eye_colour(v.local);
+    let key = normalize(-g.key_dir.xyz);
+    let fill = normalize(-g.fill_dir.xyz);
+    let diffuse = 0.85 * max(dot(normalize(v.normal), key), 0.0)
+        + 0.35 * max(dot(normalize(v.normal), fill), 0.0);
+    // (n.h)^256 by squaring.
+    let h = normalize(key + view_dir);
+    let c = max(dot(n, h), 0.0);
+    let c4 = (c * c) * (c * c);
+    let c16 = (c4 * c4) * (c4 * c4);
+    let c64 = (c16 * c16) * (c16 * c16);
+    let c256 = (c64 * c64) * (c64 * c64);
+    let hf = normalize(fill + view_dir);
+    let cf = max(dot(n, hf), 0.0);
+    let cf4 = (cf * cf) * (cf * cf);
+    let cf16 = (cf4 * cf4) * (cf4 * cf4);
+    let cf64 = (cf16 * cf16) * (cf16 * cf16);
+    let spec = 1.6 * c256 + 0.12 * c16 + 0.5 * cf64 * cf64;
+    return vec4<f32>(base * (0.22 + diffuse) + vec3<f32>(spec), 1.0);
 }
 
 // Flat ground (the ring's canvas): the key and fill light the same
@@ -318,6 +433,43 @@ fn fs_skin(v: VOut) -> @location(0) vec4<f32> {
     }
     let base = inst.color.rgb * v.color.rgb;
     return vec4<f32>(skin(base, n, view_dir, 1.0, SKIN_TOP * top_light(v.world, n, 0.0)), 1.0);
+}
+
+// A head of hair (Kajiya & Kay 1989): strands combed back over the scalp
+// scatter the light into a band across them; the diffuse part is a
+// strand's (the sine between strand and light), the highlight the cosine
+// cone about the strand; fine strokes along the strands break it up.
+@fragment
+fn fs_scalp(v: VOut) -> @location(0) vec4<f32> {
+    // The hairline: the shell ends where the height above it (the vertex
+    // colour's alpha, m) is under a wobble of up to 2 mm, so it is broken
+    // by stray hairs and tufts rather than ruled.
+    let x = v.local.x;
+    let wobble = 0.001 * (0.5 * sin(x * 900.0) + 0.3 * sin(x * 2300.0 + 1.3) + 0.2 * sin(x * 5100.0 + 0.7) + 1.0);
+    if (v.color.a + wobble < 0.0) {
+        discard;
+    }
+    let view_dir = normalize(g.camera.xyz - v.world);
+    let n = normalize(v.normal);
+    // Strands run back and a little down, in the surface's plane.
+    let back = (inst.model * vec4<f32>(0.0, -0.35, -1.0, 0.0)).xyz;
+    let t = normalize(back - n * dot(back, n) + n * 1e-4);
+    let key = normalize(-g.key_dir.xyz);
+    let fill = normalize(-g.fill_dir.xyz);
+    let h = normalize(key + view_dir);
+    let th = dot(t, h);
+    let s = sqrt(max(1.0 - th * th, 0.0));
+    let s4 = (s * s) * (s * s);
+    let s16 = (s4 * s4) * (s4 * s4);
+    let s64 = (s16 * s16) * (s16 * s16);
+    let diffuse = 0.85 * max(dot(n, key), 0.0) + 0.35 * max(dot(n, fill), 0.0)
+        + top_light(v.world, n, 0.0);
+    // Strands lie in lanes round the head's front-to-back axis.
+    let around = 0.09 * atan2(v.local.x, v.local.y + 0.02);
+    let hairs = strokes(vec2<f32>(around, v.local.z), vec2<f32>(0.0, 1.0), 0.0005, 0.008, 0.6);
+    let base = inst.color.rgb * v.color.rgb * (0.75 + 0.5 * hairs);
+    let spec = (0.10 * s64 + 0.05 * s16) * (0.6 + 0.4 * hairs) * max(dot(n, key) + 0.3, 0.0);
+    return vec4<f32>(base * (0.25 + diffuse) + vec3<f32>(spec), 1.0);
 }
 
 // Lamps, and scenery lit once on the CPU: the colour as it is.

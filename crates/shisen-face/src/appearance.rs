@@ -101,6 +101,12 @@ fn distance(p: Vec3, points: &[Vec3]) -> f32 {
         .fold(f32::MAX, f32::min)
 }
 
+/// Height above the hairline of a vertex with painted borders `r`, m
+/// (negative below it).
+pub fn hair_height(r: &Regions) -> f32 {
+    r[2] * SOFT[2]
+}
+
 /// A point's place against the painted borders, in units of each
 /// border's soft half-width: the signed distance inside the lips, the
 /// height above the brow's middle line, the height above the hairline,

@@ -460,7 +460,10 @@ mod tests {
         let mut out = vec![Vec3::ZERO; f.mesh.positions.len()];
         deform(f, &s, &mut out);
         let mid = |rim: &[u32]| out[rim[rim.len() / 2] as usize].y;
-        (mid(&f.mesh.rims.upper_lid[0]), mid(&f.mesh.rims.lower_lid[0]))
+        (
+            mid(&f.mesh.rims.upper_lid[0]),
+            mid(&f.mesh.rims.lower_lid[0]),
+        )
     }
 
     /// The eye's opening (upper minus lower mid margin), m.
@@ -490,9 +493,19 @@ mod tests {
         let mut params = FaceParams::default_params();
         params.blink.mean_interval_s = 1e6;
         let f = Face::new(MeshParams { rows: 64 }, params.clone());
-        let (neutral, smile) = (opening(&f, Emotion::Neutral), opening(&f, Emotion::Happiness));
-        println!("opening: neutral {:.2} mm, smile {:.2} mm", neutral * 1e3, smile * 1e3);
-        assert!((0.5 * neutral..0.75 * neutral).contains(&smile), "{smile} vs {neutral}");
+        let (neutral, smile) = (
+            opening(&f, Emotion::Neutral),
+            opening(&f, Emotion::Happiness),
+        );
+        println!(
+            "opening: neutral {:.2} mm, smile {:.2} mm",
+            neutral * 1e3,
+            smile * 1e3
+        );
+        assert!(
+            (0.5 * neutral..0.75 * neutral).contains(&smile),
+            "{smile} vs {neutral}"
+        );
         params.blink.cheek_lid_rise_m = 0.0;
         let seed = Face::new(MeshParams { rows: 64 }, params);
         let flat = opening(&seed, Emotion::Happiness);

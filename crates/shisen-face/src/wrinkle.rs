@@ -241,15 +241,20 @@ impl WrinkleBasis {
             // what the skin over it gathers goes to that compartment.
             let c = l.cheekbone.lerp(l.mouth_corner, 0.4);
             let d = Vec2::new(v.x.abs() - c.x.abs(), v.y - c.y).length() / CHEEK_RADIUS;
-            let fat = if n.z > 0.2 { (1.0 - d * d).max(0.0).powi(2) } else { 0.0 };
+            let fat = if n.z > 0.2 {
+                (1.0 - d * d).max(0.0).powi(2)
+            } else {
+                0.0
+            };
             let (fat, profile) = match cheek {
                 Some((_, profile)) => (1.0, profile),
                 None => (fat, 0.0),
             };
             b.depth.push(thickening * depth * (1.0 - fat));
             let under = depth.max(CHEEK_DEPTH * fat);
-            b.line_share
-                .push(smoothstep(((LINES_TO - under) / (LINES_TO - LINES_FROM)).clamp(0.0, 1.0)));
+            b.line_share.push(smoothstep(
+                ((LINES_TO - under) / (LINES_TO - LINES_FROM)).clamp(0.0, 1.0),
+            ));
             if fat > 0.0 {
                 b.cheeks[usize::from(v.x < 0.0)].push(Cheek {
                     vertex: i as u32,
@@ -260,7 +265,10 @@ impl WrinkleBasis {
         }
         // Normalise each compartment's profile to spread a unit volume.
         for cheek in &mut b.cheeks {
-            let total: f32 = cheek.iter().map(|c| c.profile * vertex_area[c.vertex as usize]).sum();
+            let total: f32 = cheek
+                .iter()
+                .map(|c| c.profile * vertex_area[c.vertex as usize])
+                .sum();
             for c in cheek.iter_mut() {
                 c.profile /= total.max(1e-12);
             }
@@ -306,7 +314,8 @@ fn tissue(l: &super::mesh::Landmarks, p: Vec3, n: Vec3) -> (f32, Option<(usize, 
     if !inside {
         return (depth, None);
     }
-    let ends = smoothstep(((top - p.y) / 0.008).min(1.0)) * smoothstep(((p.y - bottom) / 0.008).min(1.0));
+    let ends =
+        smoothstep(((top - p.y) / 0.008).min(1.0)) * smoothstep(((p.y - bottom) / 0.008).min(1.0));
     let profile = smoothstep((s / FOLD_RISE).min(1.0)) * (-(s / CHEEK_REACH).powi(2)).exp() * ends;
     (0.0, Some((usize::from(p.x < 0.0), profile)))
 }
@@ -354,7 +363,6 @@ fn smoothstep(x: f32) -> f32 {
 /// of the forehead (5 mm) and the cheeks (15 mm).
 const LINES_FROM: f32 = 0.007;
 const LINES_TO: f32 = 0.011;
-
 
 /// Highest bulge of a cheek's compartment, m (our bound, a third of its
 /// depth; a broad smile lifts the cheek's mound by a few millimetres).
@@ -492,7 +500,10 @@ pub fn measure(
     // W4 over the cheeks: the volume a compartment's skin gathers spreads
     // over the compartment.
     for cheek in &basis.cheeks {
-        let gathered: f32 = cheek.iter().map(|c| c.volume * lost[c.vertex as usize]).sum();
+        let gathered: f32 = cheek
+            .iter()
+            .map(|c| c.volume * lost[c.vertex as usize])
+            .sum();
         if gathered > 0.0 {
             for c in cheek {
                 let i = c.vertex as usize;
@@ -561,16 +572,19 @@ mod tests {
     #[test]
     fn a_smile_bulges_the_cheek_over_the_fold() {
         let f = Face::new(MeshParams { rows: 64 }, FaceParams::default_params());
-        let a = crate::emotion::emotion_activation(
-            &f.params,
-            crate::tables::Emotion::Happiness,
-            1.0,
-        );
+        let a =
+            crate::emotion::emotion_activation(&f.params, crate::tables::Emotion::Happiness, 1.0);
         let mut pos = vec![Vec3::ZERO; f.mesh.positions.len()];
         f.rig.deform(&f.mesh, &a, &mut pos);
         let before = pos.clone();
         let mut out = Vec::new();
-        measure(&f.mesh, &f.wrinkle_basis, &f.params.skin, &mut pos, &mut out);
+        measure(
+            &f.mesh,
+            &f.wrinkle_basis,
+            &f.params.skin,
+            &mut pos,
+            &mut out,
+        );
         let lift = |i: usize| (pos[i] - before[i]).dot(f.mesh.normals[i]);
         let l = &f.mesh.landmarks;
         let near = |c: Vec3| {
