@@ -274,8 +274,8 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
     let bx = abs(v.local.x);
     if (cover.y > 0.0) {
         let rise = mix(1.1, 0.15, clamp((bx - 0.012) / 0.03, 0.0, 1.0));
-        let hairs = strokes(vec2<f32>(bx, v.local.y), vec2<f32>(cos(rise), sin(rise)), 0.0006, 0.007, 0.7);
-        base = mix(base, g.face_regions[1].rgb, cover.y * (0.45 + 0.55 * hairs));
+        let hairs = strokes(vec2<f32>(bx, v.local.y), vec2<f32>(cos(rise), sin(rise)), 0.0006, 0.007, 0.8);
+        base = mix(base, g.face_regions[1].rgb, cover.y * (0.55 + 0.45 * hairs));
     }
     // The hair: a short crop's strands running back over the scalp, the
     // hairline broken by single hairs rather than ruled.

@@ -1,5 +1,5 @@
 //! Expression wrinkles from skin compression (docs/model/face.md,
-//! "Expression wrinkles", W1-W3).
+//! "Expression wrinkles and thickening", W1-W4).
 //!
 //! Skin is a thin, nearly inextensible sheet on soft tissue: where the
 //! muscles shorten it by more than its resting tension takes up, it does
@@ -15,7 +15,10 @@
 //! each vertex the slope of the lines that take up its compression along
 //! the face's two axes, and their phases; the renderer bends the shading
 //! normal with them per pixel (`render/shader.wgsl`), so the lines are
-//! finer than the mesh.
+//! finer than the mesh. It also thickens the tissue under skin that lost
+//! area (W4): thin tissue where it is, a cheek's fat over its compartment,
+//! so the cheek rises in a smile and stays down along the nasolabial
+//! fold's line; the renderer takes its normals from those positions.
 
 use super::mesh::HeadMesh;
 use glam::{IVec3, Mat2, Vec2, Vec3};
