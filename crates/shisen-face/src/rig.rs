@@ -43,21 +43,20 @@ fn eye_centre(l: &Landmarks, side: Side) -> Vec3 {
 }
 
 /// How far to either side of the eye's centre the orbital part of
-/// orbicularis oculi moves the skin, and the width over which its field
-/// fades out toward that reach and toward the eye's centre behind, m.
+/// orbicularis oculi moves the skin, m.
 const ORBITAL_REACH: f32 = 0.05;
-const ORBITAL_FADE: f32 = 0.012;
 
 /// The factor on channel `kind`'s field at rest point `p` (eye centre
-/// `ec`): the orbital part's field fades out toward its mask's edges (cut
-/// off, it stepped the skin along a line down the cheek beside the eye in
-/// every smile); 1 for every other channel.
-fn mask_fade(kind: MuscleKind, p: Vec3, ec: Vec3) -> f32 {
-    if kind != MuscleKind::OculiOrbital {
+/// `ec`): the orbital part's field fades out over `width` toward its
+/// mask's edges (`skin.domain_fade_m`; cut off, it stepped the skin along
+/// a line down the cheek beside the eye in every smile); 1 for every
+/// other channel, and everywhere when `width` is 0.
+fn mask_fade(kind: MuscleKind, p: Vec3, ec: Vec3, width: f32) -> f32 {
+    if kind != MuscleKind::OculiOrbital || width <= 0.0 {
         return 1.0;
     }
-    let side = ((ORBITAL_REACH - (p.x - ec.x).abs()) / ORBITAL_FADE).clamp(0.0, 1.0);
-    let back = ((p.z - ec.z) / ORBITAL_FADE).clamp(0.0, 1.0);
+    let side = ((ORBITAL_REACH - (p.x - ec.x).abs()) / width).clamp(0.0, 1.0);
+    let back = ((p.z - ec.z) / width).clamp(0.0, 1.0);
     smooth(side) * smooth(back)
 }
 
@@ -211,6 +210,7 @@ impl Rig {
         let l = &mesh.landmarks;
         let mut muscles = Vec::with_capacity(N_CHANNELS);
         let mut fields = Vec::with_capacity(N_CHANNELS);
+        let fade = params.skin.domain_fade_m as f32;
         for id in channels() {
             let g = place(id, l, params);
             let mut f = SparseField::default();
@@ -228,7 +228,7 @@ impl Rig {
                 if masked {
                     continue;
                 }
-                let d = mask_fade(id.kind, p, ec) * g.displacement(p, 1.0);
+                let d = mask_fade(id.kind, p, ec, fade) * g.displacement(p, 1.0);
                 if d != Vec3::ZERO {
                     f.index.push(i as u32);
                     f.delta.push(d);
@@ -413,7 +413,7 @@ mod tests {
             let ec = eye_centre(&mesh.landmarks, id.side);
             for (&i, d) in f.index.iter().zip(&f.delta) {
                 let p = mesh.positions[i as usize];
-                assert_eq!(*d, mask_fade(id.kind, p, ec) * g.displacement(p, 1.0));
+                assert_eq!(*d, mask_fade(id.kind, p, ec, 0.012) * g.displacement(p, 1.0));
             }
         }
     }

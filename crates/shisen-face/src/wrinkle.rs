@@ -63,6 +63,17 @@ pub struct SkinParams {
         deserialize_with = "shisen_gaze::util::check::unit_interval"
     )]
     pub thickening: f64,
+    /// Width over which a muscle's field fades out toward the edges of
+    /// the domain it is confined to (the orbital orbicularis's), m, 0-3 cm.
+    /// Cut off there, the field stepped the skin along a line down the
+    /// cheek beside the eye in every smile. Default 0.012 (our choice); 0
+    /// keeps the thesis's hard edge (the seed profile).
+    #[serde(default = "default_domain_fade", deserialize_with = "pull_spread")]
+    pub domain_fade_m: f64,
+}
+
+fn default_domain_fade() -> f64 {
+    0.012
 }
 
 fn default_thickening() -> f64 {
@@ -91,6 +102,7 @@ impl Default for SkinParams {
             wrinkle_onset_strain: 0.25,
             pull_spread_m: default_pull_spread(),
             thickening: default_thickening(),
+            domain_fade_m: default_domain_fade(),
         }
     }
 }

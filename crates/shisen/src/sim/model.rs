@@ -136,6 +136,7 @@ impl Model {
         seed.skin.wrinkle_spacing_m = 0.0;
         seed.skin.pull_spread_m = 0.0;
         seed.skin.thickening = 0.0;
+        seed.skin.domain_fade_m = 0.0;
         seed.lips.seal_k = None;
         seed.reflex.enabled = false;
         seed.prototypes = None;
