@@ -295,7 +295,7 @@ pub(super) fn caruncles(
                     * Mat4::from_scale_rotation_translation(
                         Vec3::from_array(CARUNCLE_HALF),
                         Quat::IDENTITY,
-                        corner + toward_eye - Vec3::Z * CARUNCLE_HALF[2],
+                        corner + toward_eye - Vec3::Z * (1.5 * CARUNCLE_HALF[2]),
                     ),
                 color: CARUNCLE,
                 material: Material::Plain,
@@ -306,8 +306,8 @@ pub(super) fn caruncles(
 
 /// Half sizes of a caruncle (across, up, deep), m: about 4 by 5 mm
 /// (our reading of anatomy atlases), and its colour.
-const CARUNCLE_HALF: [f32; 3] = [0.0014, 0.0019, 0.0012];
-const CARUNCLE: [f32; 4] = [0.56, 0.30, 0.28, 1.0];
+const CARUNCLE_HALF: [f32; 3] = [0.0011, 0.0016, 0.0010];
+const CARUNCLE: [f32; 4] = [0.52, 0.31, 0.29, 1.0];
 
 /// Lashes, m: upper and lower length at mid-lid (Thibaut et al. 2010,
 /// Br. J. Dermatol. 163:1023: upper 8-12 mm, lower 6-8 mm; shorter here,

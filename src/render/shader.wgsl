@@ -134,6 +134,16 @@ fn vs_painted(
     return o;
 }
 
+// Smooth noise in [0, 1] along a line: random values at whole `x`,
+// eased between.
+fn value_noise(x: f32) -> f32 {
+    let c = floor(x);
+    let f = fract(x);
+    let a = hash2(vec2<f32>(c, 5.0));
+    let b = hash2(vec2<f32>(c + 1.0, 5.0));
+    return mix(a, b, f * f * (3.0 - 2.0 * f));
+}
+
 // A pseudo-random value in [0, 1) per integer cell.
 fn hash2(c: vec2<f32>) -> f32 {
     return fract(sin(dot(c, vec2<f32>(12.9898, 78.233))) * 43758.5453);
@@ -275,7 +285,10 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
     if (cover.y > 0.0) {
         let rise = mix(1.1, 0.15, clamp((bx - 0.012) / 0.03, 0.0, 1.0));
         let hairs = strokes(vec2<f32>(bx, v.local.y), vec2<f32>(cos(rise), sin(rise)), 0.0006, 0.007, 0.8);
-        base = mix(base, g.face_regions[1].rgb, cover.y * (0.55 + 0.45 * hairs));
+        // The head's hairs are sparse and soft: less contrast there.
+        let head = clamp((bx - 0.012) / 0.012, 0.0, 1.0);
+        let contrast = mix(0.2, 0.45, head);
+        base = mix(base, g.face_regions[1].rgb, cover.y * (1.0 - contrast + contrast * hairs));
     }
     // The hair: a short crop's strands running back over the scalp, the
     // hairline broken by single hairs rather than ruled.
@@ -444,8 +457,10 @@ fn fs_scalp(v: VOut) -> @location(0) vec4<f32> {
     // The hairline: the shell ends where the height above it (the vertex
     // colour's alpha, m) is under a wobble of up to 2 mm, so it is broken
     // by stray hairs and tufts rather than ruled.
-    let x = v.local.x;
-    let wobble = 0.001 * (0.5 * sin(x * 900.0) + 0.3 * sin(x * 2300.0 + 1.3) + 0.2 * sin(x * 5100.0 + 0.7) + 1.0);
+    // Value noise along the hairline, in cells of 4 mm and 1.3 mm: tufts
+    // and single strays, not a regular saw.
+    let x = v.local.x + 0.3 * v.local.z;
+    let wobble = 0.0013 * value_noise(x / 0.004) + 0.0007 * value_noise(x / 0.0013 + 7.0);
     if (v.color.a + wobble < 0.0) {
         discard;
     }
