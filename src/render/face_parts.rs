@@ -86,7 +86,7 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     // open fraction of their view out of a slit of width `gap` at the
     // lips' depth `d` is about g / (g + 2 d); scaled so a wide-open mouth
     // is fully lit.
-    let lit = (1.2 * gap / (gap + 2.0 * INCISOR_DEPTH)).clamp(0.3, 1.0);
+    let lit = (1.2 * gap / (gap + 2.0 * INCISOR_DEPTH)).clamp(0.45, 1.0);
     // The cavity stands behind the upper canines and behind the lower
     // ones, which the jaw carries back as it opens (about 6 mm behind the
     // lower incisors round their smaller arch).
@@ -116,7 +116,7 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
             let (x, back, angle) = arch_at(arch, s + width / 2.0);
             s += width;
             // Teeth further round the arch sit deeper in the mouth's shade.
-            let shade = lit * (1.0 - back / 0.04).clamp(0.4, 1.0);
+            let shade = lit * (1.0 - back / 0.05).clamp(0.5, 1.0);
             for side in [-1.0f32, 1.0] {
                 let rotation = Quat::from_rotation_x(turn) * Quat::from_rotation_y(side * angle);
                 let inward = rotation * -Vec3::Z;
@@ -176,7 +176,7 @@ fn arch_at(arch: &[[f32; 2]], s: f32) -> (f32, f32, f32) {
 
 /// Crown colours (linear RGB): enamel, a little darker and yellower than
 /// white; the attached gingiva's pink; the tongue's red.
-const TEETH: [f32; 3] = [0.80, 0.77, 0.66];
+const TEETH: [f32; 3] = [0.84, 0.77, 0.68];
 const GUM: [f32; 3] = [0.52, 0.17, 0.17];
 const TONGUE: [f32; 3] = [0.46, 0.13, 0.13];
 /// Half sizes of the tongue's resting body (across, up, back), m: an adult

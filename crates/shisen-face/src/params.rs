@@ -77,10 +77,10 @@ pub struct BlinkParams {
     /// orbital orbicularis (AU 6), m: the cheek the muscle raises pushes
     /// the lower lid up and narrows the eye from below, the mark of a
     /// felt smile (Ekman, Friesen & Hager 2002, FACS Manual, AU 6;
-    /// Duchenne's smile). Default 0.006: happiness's orbital contraction
-    /// (0.25) lifts it 1.5 mm more than the sphincter's own field does,
-    /// together a third of the eye's opening (our choice); 0 leaves the
-    /// lid to the sphincter's field (the seed profile).
+    /// Duchenne's smile). Default 0.008: happiness's orbital contraction
+    /// (0.25) lifts it 2 mm more than the sphincter's own field does, the
+    /// opening closing by about two fifths (our choice); 0 leaves the lid
+    /// to the sphincter's field (the seed profile).
     #[serde(
         default = "default_cheek_lid_rise",
         deserialize_with = "shisen_gaze::util::check::non_negative"
@@ -157,7 +157,7 @@ fn default_levator_max_raise() -> Option<f64> {
 }
 
 fn default_cheek_lid_rise() -> f64 {
-    0.006
+    0.008
 }
 
 fn default_lower_lid_follow_gain() -> f64 {

@@ -413,7 +413,10 @@ mod tests {
             let ec = eye_centre(&mesh.landmarks, id.side);
             for (&i, d) in f.index.iter().zip(&f.delta) {
                 let p = mesh.positions[i as usize];
-                assert_eq!(*d, mask_fade(id.kind, p, ec, 0.012) * g.displacement(p, 1.0));
+                assert_eq!(
+                    *d,
+                    mask_fade(id.kind, p, ec, 0.012) * g.displacement(p, 1.0)
+                );
             }
         }
     }
