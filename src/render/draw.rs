@@ -43,11 +43,16 @@ pub enum MeshKey {
     /// A tooth's crown: a rounded box of half extent 1
     /// ([`super::geometry::rounded_box`]).
     Tooth,
+    /// A coarse unit sphere for small parts a few pixels across (the
+    /// caruncles, the tongue): a software rasteriser pays for every
+    /// triangle, however small.
+    Blob,
 }
 
 impl MeshKey {
     /// Whether the mesh is closed and wound counter-clockwise seen from
-    /// outside, so its back faces can be skipped (the skinned bodies are
+    /// outside (the hair's shell meets the skin at the hairline, so its
+    /// inside is never seen), so its back faces can be skipped (the skinned bodies are
     /// too, and their own pipeline skips them: [`Material::Body`]).
     pub fn is_closed(self) -> bool {
         matches!(
@@ -55,6 +60,8 @@ impl MeshKey {
             MeshKey::Sphere
                 | MeshKey::Cube
                 | MeshKey::Tooth
+                | MeshKey::Blob
+                | MeshKey::HairShell
                 | MeshKey::Capsule { .. }
                 | MeshKey::Ring
                 | MeshKey::Lamps
@@ -157,7 +164,10 @@ impl Material {
         !matches!(
             self,
             Material::Floor | Material::Emissive | Material::Hair | Material::Eye
-        ) && !matches!(mesh, MeshKey::Ring | MeshKey::Ear | MeshKey::Tooth)
+        ) && !matches!(
+            mesh,
+            MeshKey::Ring | MeshKey::Ear | MeshKey::Tooth | MeshKey::Blob | MeshKey::HairShell
+        )
     }
 }
 

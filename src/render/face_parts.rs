@@ -97,12 +97,15 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     // back under the palate, and drops with the jaw; the part behind the
     // cavity's front is hidden by it.
     let tongue_rest = lower_rest + Vec3::new(0.0, -TONGUE_HALF[1] + 0.001, -TONGUE_HALF[2] - 0.004);
-    draws.push(ellipsoid(
-        tongue_rest + shisen_face::muscle::jaw_rotation(tongue_rest - jaw.pivot, theta)
-            - Vec3::Z * push,
-        Vec3::from_array(TONGUE_HALF),
-        shaded(TONGUE, lit),
-    ));
+    draws.push(Draw {
+        mesh: MeshKey::Blob,
+        ..ellipsoid(
+            tongue_rest + shisen_face::muscle::jaw_rotation(tongue_rest - jaw.pivot, theta)
+                - Vec3::Z * push,
+            Vec3::from_array(TONGUE_HALF),
+            shaded(TONGUE, lit),
+        )
+    });
     // Each arch's teeth, midline outward, along the arch's curve (the
     // lower one turning with the jaw), each crown facing out of the arch,
     // and the gum over its neck.
@@ -290,7 +293,7 @@ pub(super) fn caruncles(
             let corner = (inner + lower_inner) / 2.0;
             let toward_eye = Vec3::X * corner.x.signum() * CARUNCLE_HALF[0];
             Draw {
-                mesh: MeshKey::Sphere,
+                mesh: MeshKey::Blob,
                 model: face_frame
                     * Mat4::from_scale_rotation_translation(
                         Vec3::from_array(CARUNCLE_HALF),
@@ -333,12 +336,12 @@ const LASH: [f32; 4] = {
 /// have 90-160 upper and 70-80 lower lashes in several rows; one row of
 /// strands this close, each a fraction of a pixel wide at sparring
 /// distance, reads as the same soft dark fringe).
-const LASH_SPACING: f32 = 0.0005;
+const LASH_SPACING: f32 = 0.0006;
 /// Width of a lash at its root, m (a lash is about 0.1 mm thick; drawn
 /// wider, as several lashes of a row overlap).
 const LASH_WIDTH: f32 = 0.0005;
 /// Straight pieces a lash's curve is drawn with.
-const LASH_SEGMENTS: usize = 4;
+const LASH_SEGMENTS: usize = 2;
 /// Depth of the upper lashes' dense roots along the lid's edge, m (our
 /// choice: about a millimetre, where the lashes stand in two or three rows,
 /// and the lid's edge reads dark in any light).

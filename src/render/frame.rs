@@ -253,12 +253,6 @@ impl Frame {
         let (head_p, head_q) = w.pose(Seg::Head);
         let face_frame = Mat4::from_rotation_translation(head_q, head_p)
             * Mat4::from_translation(face_offset(&w.plan));
-        draws.push(Draw {
-            mesh: MeshKey::Face,
-            model: face_frame,
-            color: WHITE,
-            material: Material::Face,
-        });
         let face = face_vertices(sim);
         draws.extend(mouth(sim, &face, face_frame));
         let lashes = lashes(&sim.model().face.mesh.rims, &face);
@@ -289,6 +283,14 @@ impl Frame {
             model: face_frame,
             color: WHITE,
             material: Material::Scalp,
+        });
+        // The face after the hair over it: the skin under the hair fails
+        // the depth test before it is shaded.
+        draws.push(Draw {
+            mesh: MeshKey::Face,
+            model: face_frame,
+            color: WHITE,
+            material: Material::Face,
         });
         // The ring and the hall, last (behind the fighters).
         draws.extend(super::ring::draws());

@@ -187,8 +187,8 @@ pub fn floor() -> MeshData {
 /// helix) round its top and back, the antihelix's ridge inside it, and a
 /// lobe narrower than the top.
 pub fn ear() -> MeshData {
-    const AROUND: u32 = 48;
-    const ACROSS: u32 = 28;
+    const AROUND: u32 = 40;
+    const ACROSS: u32 = 16;
     let (half_h, half_w) = (0.031, 0.017);
     let tilt = 15f32.to_radians();
     let point = |theta: f32, v: f32| {

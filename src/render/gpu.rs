@@ -654,6 +654,7 @@ impl Renderer {
         r.upload(MeshKey::Lamps, &super::ring::lamps());
         // Crowns: boxy, with edges rounded over about a fifth of their size.
         r.upload(MeshKey::Tooth, &geometry::rounded_box(5.0));
+        r.upload(MeshKey::Blob, &geometry::rounded_box(2.0));
         r
     }
 

@@ -290,15 +290,7 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
         let contrast = mix(0.2, 0.45, head);
         base = mix(base, g.face_regions[1].rgb, cover.y * (1.0 - contrast + contrast * hairs));
     }
-    // The hair: a short crop's strands running back over the scalp, the
-    // hairline broken by single hairs rather than ruled.
-    if (v.paint.z > -2.0) {
-        let hair_dir = normalize(vec2<f32>(0.0, 1.0));
-        let hairs = strokes(vec2<f32>(v.local.x, v.local.y + 0.6 * v.local.z), hair_dir, 0.0005, 0.008, 0.6);
-        let edge = clamp((v.paint.z + 1.5) / 3.0, 0.0, 1.0);
-        let reach = cover.z + (1.0 - cover.z) * hairs * edge * 0.8;
-        base = mix(base, g.face_regions[2].rgb * (0.75 + 0.5 * hairs), reach);
-    }
+    base = mix(base, g.face_regions[2].rgb, cover.z);
     // Expression wrinkles (docs/model/face.md W1-W3): two families of
     // lines, across the face's vertical axis (phase y / L) and across
     // its horizontal one (x / L), each of height A cos(2 pi phase), so
