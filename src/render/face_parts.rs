@@ -99,12 +99,15 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     let tongue_rest = lower_rest + Vec3::new(0.0, -TONGUE_HALF[1] + 0.001, -TONGUE_HALF[2] - 0.004);
     draws.push(Draw {
         mesh: MeshKey::Blob,
-        ..ellipsoid(
-            tongue_rest + shisen_face::muscle::jaw_rotation(tongue_rest - jaw.pivot, theta)
-                - Vec3::Z * push,
-            Vec3::from_array(TONGUE_HALF),
-            shaded(TONGUE, lit),
-        )
+        model: face_frame
+            * Mat4::from_scale_rotation_translation(
+                Vec3::from_array(TONGUE_HALF),
+                Quat::from_rotation_x(theta),
+                tongue_rest + shisen_face::muscle::jaw_rotation(tongue_rest - jaw.pivot, theta)
+                    - Vec3::Z * push,
+            ),
+        color: shaded(TONGUE, lit),
+        material: Material::Plain,
     });
     // Each arch's teeth, midline outward, along the arch's curve (the
     // lower one turning with the jaw), each crown facing out of the arch,
@@ -307,8 +310,8 @@ pub(super) fn caruncles(
         .collect()
 }
 
-/// Half sizes of a caruncle (across, up, deep), m: about 4 by 5 mm
-/// (our reading of anatomy atlases), and its colour.
+/// Half sizes of a caruncle (across, up, deep), m: about 2 by 3 mm of it
+/// shows (our reading of anatomy atlases), and its colour.
 const CARUNCLE_HALF: [f32; 3] = [0.0011, 0.0016, 0.0010];
 const CARUNCLE: [f32; 4] = [0.52, 0.31, 0.29, 1.0];
 

@@ -228,7 +228,12 @@ pub fn ear() -> MeshData {
             let (v, theta) = (i as f32 / ACROSS as f32, j as f32 / AROUND as f32 * TAU);
             let p = point(theta, v.max(0.02));
             let du = point(theta + 0.01, v.max(0.02)) - p;
-            let dv = point(theta, (v + 0.01).clamp(0.03, 1.0)) - p;
+            // A forward difference, backward at the rim (v = 1).
+            let dv = if v + 0.01 <= 1.0 {
+                point(theta, (v + 0.01).max(0.03)) - p
+            } else {
+                p - point(theta, v - 0.01)
+            };
             let n = dv.cross(du).normalize_or(Vec3::X);
             vertices.push(Vertex::new(p, if n.x < 0.0 { -n } else { n }));
         }

@@ -156,8 +156,14 @@ fn hash2(c: vec2<f32>) -> f32 {
 // mean cover, `mean`, so they neither alias nor shimmer.
 fn strokes(q: vec2<f32>, dir: vec2<f32>, gap: f32, len: f32, mean: f32) -> f32 {
     let across = dot(q, vec2<f32>(-dir.y, dir.x)) / gap;
+    return strands(across, dot(q, dir) / len, fwidth(across), mean);
+}
+
+// The same in lane coordinates: `across` counts strands (its pixel
+// footprint `fw`, taken where control flow is uniform), `along` lengths.
+fn strands(across: f32, along_in: f32, fw: f32, mean: f32) -> f32 {
     let lane = floor(across);
-    let along = dot(q, dir) / len + hash2(vec2<f32>(lane, 1.0));
+    let along = along_in + hash2(vec2<f32>(lane, 1.0));
     let piece = floor(along);
     let r = hash2(vec2<f32>(lane, piece));
     let f = fract(across) - 0.5 + 0.3 * (r - 0.5);
@@ -165,8 +171,27 @@ fn strokes(q: vec2<f32>, dir: vec2<f32>, gap: f32, len: f32, mean: f32) -> f32 {
     let strand = (1.0 - smoothstep(0.12, 0.32, abs(f)))
         * smoothstep(0.0, 0.25, at) * (1.0 - smoothstep(0.6, 1.0, at))
         * step(0.15, r);
-    let sharp = clamp(1.5 - 2.0 * fwidth(across), 0.0, 1.0);
+    let sharp = clamp(1.5 - 2.0 * fw, 0.0, 1.0);
     return mix(mean, strand, sharp);
+}
+
+// Brow hairs' lanes: the hairs rise at `r(x)` from the brow's head
+// (1.1 rad) to its tail (0.15), falling linearly between 12 and 42 mm
+// from the midline; a lane is a curve y = F(x) + c with F' = tan r, so
+// the strands follow the lie everywhere (F in closed form:
+// -ln(cos r) / k on the ramp of slope k).
+const BROW_X0: f32 = 0.012;
+const BROW_X1: f32 = 0.042;
+const BROW_R0: f32 = 1.1;
+const BROW_R1: f32 = 0.15;
+fn brow_rise(x: f32) -> f32 {
+    return mix(BROW_R0, BROW_R1, clamp((x - BROW_X0) / (BROW_X1 - BROW_X0), 0.0, 1.0));
+}
+fn brow_lane(x: f32) -> f32 {
+    let k = (BROW_R1 - BROW_R0) / (BROW_X1 - BROW_X0);
+    let xc = clamp(x, BROW_X0, BROW_X1);
+    let ramp = -(log(cos(brow_rise(xc))) - log(cos(BROW_R0))) / k;
+    return ramp + tan(BROW_R0) * min(x - BROW_X0, 0.0) + tan(BROW_R1) * max(x - BROW_X1, 0.0);
 }
 
 // Skin pores: a shallow pit in each cell of a jittered grid `cell` wide,
@@ -282,14 +307,16 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
     // the brow's head and lying flatter toward the tail (our reading of how
     // brow hairs grow), denser in the body, over a faint base.
     let bx = abs(v.local.x);
-    if (cover.y > 0.0) {
-        let rise = mix(1.1, 0.15, clamp((bx - 0.012) / 0.03, 0.0, 1.0));
-        let hairs = strokes(vec2<f32>(bx, v.local.y), vec2<f32>(cos(rise), sin(rise)), 0.0006, 0.007, 0.8);
-        // The head's hairs are sparse and soft: less contrast there.
-        let head = clamp((bx - 0.012) / 0.012, 0.0, 1.0);
-        let contrast = mix(0.2, 0.45, head);
-        base = mix(base, g.face_regions[1].rgb, cover.y * (1.0 - contrast + contrast * hairs));
-    }
+    // (No branch: the strands' pixel footprint is a derivative, which
+    // needs uniform control flow.)
+    let rise = brow_rise(bx);
+    let brow_across = (v.local.y - brow_lane(bx)) * cos(rise) / 0.0006;
+    let brow_along = (bx * cos(rise) + v.local.y * sin(rise)) / 0.007;
+    let hairs = strands(brow_across, brow_along, fwidth(brow_across), 0.8);
+    // The head's hairs are sparse and soft: less contrast there.
+    let head = clamp((bx - 0.012) / 0.012, 0.0, 1.0);
+    let contrast = mix(0.2, 0.45, head);
+    base = mix(base, g.face_regions[1].rgb, cover.y * (1.0 - contrast + contrast * hairs));
     base = mix(base, g.face_regions[2].rgb, cover.z);
     // Expression wrinkles (docs/model/face.md W1-W3): two families of
     // lines, across the face's vertical axis (phase y / L) and across
@@ -328,12 +355,10 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
     // Pores, finer on the forehead than over the nose and cheeks (our
     // choice of 0.5-0.8 mm spacing), on bare skin only.
     let bare = (1.0 - cover.x) * (1.0 - cover.z);
-    if (bare > 0.5) {
-        let ax = (inst.model * vec4<f32>(1.0, 0.0, 0.0, 0.0)).xyz;
-        let ay = (inst.model * vec4<f32>(0.0, 1.0, 0.0, 0.0)).xyz;
-        let cell = mix(0.0008, 0.0005, clamp(v.local.y / 0.04, 0.0, 1.0));
-        n = pores(n, v.local.xy, ax, ay, cell);
-    }
+    let ax = (inst.model * vec4<f32>(1.0, 0.0, 0.0, 0.0)).xyz;
+    let ay = (inst.model * vec4<f32>(0.0, 1.0, 0.0, 0.0)).xyz;
+    let cell = select(0.0008, 0.0005, v.local.y > 0.02);
+    n = select(n, pores(n, v.local.xy, ax, ay, cell), bare > 0.5);
     let top = SKIN_TOP * top_light(v.world, normalize(v.normal), 0.0);
     return vec4<f32>(skin(base, n, view_dir, (1.0 - 0.33 * furrow) * tilt, top), 1.0);
 }
@@ -404,7 +429,8 @@ fn fs_eye(v: VOut) -> @location(0) vec4<f32> {
     let key = normalize(-g.key_dir.xyz);
     let fill = normalize(-g.fill_dir.xyz);
     let diffuse = 0.85 * max(dot(normalize(v.normal), key), 0.0)
-        + 0.35 * max(dot(normalize(v.normal), fill), 0.0);
+        + 0.35 * max(dot(normalize(v.normal), fill), 0.0)
+        + top_light(v.world, normalize(v.normal), 0.0);
     // (n.h)^256 by squaring.
     let h = normalize(key + view_dir);
     let c = max(dot(n, h), 0.0);

@@ -56,7 +56,9 @@ fn mask_fade(kind: MuscleKind, p: Vec3, ec: Vec3, width: f32) -> f32 {
         return 1.0;
     }
     let side = ((ORBITAL_REACH - (p.x - ec.x).abs()) / width).clamp(0.0, 1.0);
-    let back = ((p.z - ec.z) / width).clamp(0.0, 1.0);
+    // The skin in front of the eye's centre is only millimetres deep:
+    // the fade toward that plane is a quarter as wide.
+    let back = ((p.z - ec.z) / (0.25 * width)).clamp(0.0, 1.0);
     smooth(side) * smooth(back)
 }
 

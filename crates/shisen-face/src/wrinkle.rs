@@ -126,8 +126,9 @@ pub struct WrinkleBasis {
     /// Per vertex: the depth of soft tissue that thickens under it (W4),
     /// m, times the skin's `thickening`; 0 on the folds' tethers.
     depth: Vec<f32>,
-    /// Per vertex: the share of its compression that folds into lines
-    /// rather than thickening the tissue (W2), 0-1.
+    /// Per vertex: the share of its compression W2 folds into lines, 0-1:
+    /// 1 over thin tissue (which also thickens, W4), 0 over the cheeks'
+    /// deep fat, which thickens instead.
     line_share: Vec<f32>,
     /// The two cheeks' fat compartments (W4).
     cheeks: [Vec<Cheek>; 2],
@@ -250,6 +251,14 @@ impl WrinkleBasis {
         }
         let thickening = skin.thickening as f32;
         let l = &mesh.landmarks;
+        let lids: std::collections::HashSet<u32> = mesh
+            .lid_zone
+            .iter()
+            .flatten()
+            .chain(mesh.rims.upper_lid.iter().flatten())
+            .chain(mesh.rims.lower_lid.iter().flatten())
+            .copied()
+            .collect();
         for (i, (&v, &n)) in p.iter().zip(&mesh.normals).enumerate() {
             let (depth, cheek) = tissue(l, v, n);
             // The cheek's fat reaches beyond the compartment that bulges;
@@ -265,11 +274,18 @@ impl WrinkleBasis {
                 Some((_, profile)) => (1.0, profile),
                 None => (fat, 0.0),
             };
-            b.depth.push(thickening * depth * (1.0 - fat));
+            // The lids stay where the lid-clearance step put them, over
+            // the eyeball; the lash line, lashes and caruncles sit on them.
+            let lid = lids.contains(&(i as u32));
+            b.depth.push(if lid {
+                0.0
+            } else {
+                thickening * depth * (1.0 - fat)
+            });
             let under = depth.max(CHEEK_DEPTH * fat);
-            b.line_share.push(smoothstep(
-                ((LINES_TO - under) / (LINES_TO - LINES_FROM)).clamp(0.0, 1.0),
-            ));
+            let folds = smoothstep(((LINES_TO - under) / (LINES_TO - LINES_FROM)).clamp(0.0, 1.0));
+            // Without thickening, all of the compression folds (W1-W3).
+            b.line_share.push(1.0 - thickening * (1.0 - folds));
             if fat > 0.0 {
                 b.cheeks[usize::from(v.x < 0.0)].push(Cheek {
                     vertex: i as u32,
@@ -308,9 +324,11 @@ impl WrinkleBasis {
 /// fat is held back by it), nothing on it: the fold is the bulge's edge.
 fn tissue(l: &super::mesh::Landmarks, p: Vec3, n: Vec3) -> (f32, Option<(usize, f32)>) {
     let q = Vec2::new(p.x.abs(), p.y);
-    let under_eye = {
+    let under_eye = if n.z > 0.2 {
         let d = Vec2::new(l.orbit_lower.x.abs(), l.orbit_lower.y).distance(q) / 0.015;
         (1.0 - d * d).max(0.0).powi(2)
+    } else {
+        0.0
     };
     let depth = 0.005 + 0.004 * under_eye;
     // Distance lateral of the fold's line (negative medial of it).
@@ -379,7 +397,7 @@ fn smoothstep(x: f32) -> f32 {
 const LINES_FROM: f32 = 0.007;
 const LINES_TO: f32 = 0.011;
 
-/// Highest bulge of a cheek's compartment, m (our bound, a third of its
+/// Highest bulge of a cheek's compartment, m (our bound, two fifths of its
 /// depth; a broad smile lifts the cheek's mound by a few millimetres).
 const MAX_CHEEK_BULGE: f32 = 0.006;
 
