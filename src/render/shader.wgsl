@@ -199,7 +199,11 @@ fn brow_lane(x: f32) -> f32 {
 // under two pixels (the filtered surface is smooth).
 fn pores(n: vec3<f32>, q: vec2<f32>, ax: vec3<f32>, ay: vec3<f32>, cell: f32) -> vec3<f32> {
     let u = q / cell;
-    let fade = clamp(1.0 - 2.0 * max(fwidth(u.x), fwidth(u.y)), 0.0, 1.0);
+    // Sampled in the face's plane: faded where the skin turns away from
+    // it (the cheeks' and jaw's sides), where the grid would stretch.
+    let az = normalize(cross(ax, ay));
+    let facing = smoothstep(0.5, 0.8, abs(dot(n, az)));
+    let fade = clamp(1.0 - 2.0 * max(fwidth(u.x), fwidth(u.y)), 0.0, 1.0) * facing;
     if (fade <= 0.0) {
         return n;
     }
