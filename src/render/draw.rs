@@ -30,8 +30,8 @@ pub enum MeshKey {
     /// The VH's eyelashes ([`Frame::lashes`](crate::render::Frame::lashes), a triangle list in the face
     /// frame).
     Lashes,
-    /// The VH's hair standing off its scalp ([`Frame::hair`](crate::render::Frame::hair), a
-    /// triangle list in the face frame).
+    /// The VH's hair standing off its scalp ([`Frame::hair`](crate::render::Frame::hair),
+    /// indexed, in the face frame).
     HairShell,
     /// The boxing ring and the hall round it, one static mesh coloured
     /// per vertex ([`super::ring::mesh`]).

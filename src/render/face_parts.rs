@@ -281,19 +281,15 @@ pub(super) fn caruncles(
         .zip(&rims.lower_lid)
         .filter(|(u, l)| !u.is_empty() && !l.is_empty())
         .map(|(upper, lower)| {
-            let at = |i: u32| Vec3::from_array(face[i as usize].pos);
-            let ends = [upper[0], upper[upper.len() - 1]];
-            let inner = ends
-                .into_iter()
-                .map(at)
-                .min_by(|a, b| a.x.abs().total_cmp(&b.x.abs()))
-                .expect("two ends");
-            let lower_inner = [lower[0], lower[lower.len() - 1]]
-                .into_iter()
-                .map(at)
-                .min_by(|a, b| a.x.abs().total_cmp(&b.x.abs()))
-                .expect("two ends");
-            let corner = (inner + lower_inner) / 2.0;
+            // A rim's end nearer the midline.
+            let inner = |rim: &[u32]| {
+                [rim[0], rim[rim.len() - 1]]
+                    .map(|i| Vec3::from_array(face[i as usize].pos))
+                    .into_iter()
+                    .min_by(|a, b| a.x.abs().total_cmp(&b.x.abs()))
+                    .expect("two ends")
+            };
+            let corner = (inner(upper) + inner(lower)) / 2.0;
             let toward_eye = Vec3::X * corner.x.signum() * CARUNCLE_HALF[0];
             Draw {
                 mesh: MeshKey::Blob,
@@ -483,27 +479,36 @@ const HAIR: [f32; 4] = {
     [h[0], h[1], h[2], 1.0]
 };
 
-/// The hair as a shell over the scalp: every face triangle above the
-/// hairline, lifted off the deformed skin along its normals by the hair's
-/// depth, which grows from nothing at the hairline (the shell meets the
-/// skin there, whose painted hair carries on under it) to [`HAIR_DEPTH`].
-/// It gives the head its silhouette of hair and a surface whose strands
-/// catch the light. A triangle list, face frame.
-pub(super) fn hair_shell(triangles: &[[u32; 3]], face: &[Vertex]) -> Vec<Vertex> {
-    let height = |i: u32| shisen_face::appearance::hair_height(&face[i as usize].paint);
-    // The vertex colour's alpha carries the height above the hairline, m:
-    // the shader cuts the shell along the hairline between vertices.
-    let lift = |i: u32| {
-        let v = &face[i as usize];
-        let h = height(i);
-        let t = (h / HAIR_RISE).clamp(0.0, 1.0);
-        let depth = HAIR_LIFT + HAIR_DEPTH * t * (2.0 - t);
-        let (p, n) = (Vec3::from_array(v.pos), Vec3::from_array(v.normal));
-        Vertex::coloured(p + n * depth, n, [HAIR[0], HAIR[1], HAIR[2], h])
-    };
-    triangles
+/// The hair as a shell over the scalp: the face's vertices lifted off the
+/// deformed skin along their normals by the hair's depth, which grows from
+/// nothing at the hairline (the shell meets the skin there, whose painted
+/// hair carries on under it) to [`HAIR_DEPTH`], and the face's triangles
+/// that reach the hairline or lie above it. It gives the head its
+/// silhouette of hair and a surface whose strands catch the light. One
+/// lifted vertex per face vertex (the vertex colour's alpha carries its
+/// height above the hairline, m, where the shader cuts the shell) and
+/// the triangles' indices into them, face frame; the indices depend on
+/// the rest paint only, so they are the same every frame.
+pub(super) fn hair_shell(triangles: &[[u32; 3]], face: &[Vertex]) -> (Vec<Vertex>, Vec<u32>) {
+    let height = |v: &Vertex| shisen_face::appearance::hair_height(&v.paint);
+    let lifted = face
         .iter()
-        .filter(|t| t.iter().any(|&i| height(i) >= -HAIRLINE_WOBBLE))
-        .flat_map(|t| t.map(lift))
-        .collect()
+        .map(|v| {
+            let h = height(v);
+            let t = (h / HAIR_RISE).clamp(0.0, 1.0);
+            let depth = HAIR_LIFT + HAIR_DEPTH * t * (2.0 - t);
+            let (p, n) = (Vec3::from_array(v.pos), Vec3::from_array(v.normal));
+            Vertex::coloured(p + n * depth, n, [HAIR[0], HAIR[1], HAIR[2], h])
+        })
+        .collect();
+    let indices = triangles
+        .iter()
+        .filter(|t| {
+            t.iter()
+                .any(|&i| height(&face[i as usize]) >= -HAIRLINE_WOBBLE)
+        })
+        .flatten()
+        .copied()
+        .collect();
+    (lifted, indices)
 }

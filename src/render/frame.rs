@@ -42,8 +42,9 @@ pub struct Frame {
     /// Eyelashes on the deformed lid rims, face frame, a triangle list
     /// ([`MeshKey::Lashes`]).
     pub lashes: Vec<Vertex>,
-    /// The VH's hair standing off its scalp: a triangle list, face frame.
-    pub hair: Vec<Vertex>,
+    /// The VH's hair standing off its scalp, face frame, and the
+    /// triangles' indices into it ([`MeshKey::HairShell`]).
+    pub hair: (Vec<Vertex>, Vec<u32>),
     /// The VH's posed body, world frame ([`MeshKey::Body`], indexed by
     /// `Looks::indices`).
     pub body: Vec<Vertex>,

@@ -794,8 +794,7 @@ impl Renderer {
         self.dynamic_mesh(MeshKey::Face, &frame.face, face_triangles.as_flattened());
         let lashes: Vec<u32> = (0..frame.lashes.len() as u32).collect();
         self.dynamic_mesh(MeshKey::Lashes, &frame.lashes, &lashes);
-        let hair: Vec<u32> = (0..frame.hair.len() as u32).collect();
-        self.dynamic_mesh(MeshKey::HairShell, &frame.hair, &hair);
+        self.dynamic_mesh(MeshKey::HairShell, &frame.hair.0, &frame.hair.1);
         let looks = Looks::of(&frame.plan);
         self.dynamic_mesh(
             MeshKey::Body,

@@ -372,6 +372,22 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
 // all (its lanes are masked, not skipped), so the ground, the lamps and the
 // scenery pay for nothing but their own few instructions.
 
+// The key, fill and top lights' diffuse on a surface of normal `n` at
+// `world` (the top light shadowed): the plain lighting law, shared by the
+// plain material, the eyes and the hair (`draw::plain_light` on the CPU).
+fn key_fill_top(world: vec3<f32>, n: vec3<f32>) -> f32 {
+    let key = normalize(-g.key_dir.xyz);
+    let fill = normalize(-g.fill_dir.xyz);
+    return 0.85 * max(dot(n, key), 0.0) + 0.35 * max(dot(n, fill), 0.0)
+        + top_light(world, n, 0.0);
+}
+
+// x^4 by squaring (pow() is exp2(log2) per sample on a software
+// rasteriser).
+fn pow4(x: f32) -> f32 {
+    return (x * x) * (x * x);
+}
+
 // Lit plain: key, fill, the lamps above (shadowed), ambient, and a
 // Blinn-Phong highlight of strength `shine`.
 fn plain_lit(v: VOut, base: vec3<f32>, shine: f32) -> vec4<f32> {
@@ -382,10 +398,8 @@ fn plain_lit(v: VOut, base: vec3<f32>, shine: f32) -> vec4<f32> {
         n = -n;
     }
     let key = normalize(-g.key_dir.xyz);
-    let fill = normalize(-g.fill_dir.xyz);
     let h = normalize(key + view_dir);
-    let diffuse = 0.85 * max(dot(n, key), 0.0) + 0.35 * max(dot(n, fill), 0.0)
-        + top_light(v.world, n, 0.0);
+    let diffuse = key_fill_top(v.world, n);
     let ambient = 0.22;
     // (n.h)^40 by squaring: pow() is exp2(log2) per sample on a software
     // rasteriser.
@@ -432,21 +446,11 @@ fn fs_eye(v: VOut) -> @location(0) vec4<f32> {
     let base = eye_colour(v.local);
     let key = normalize(-g.key_dir.xyz);
     let fill = normalize(-g.fill_dir.xyz);
-    let diffuse = 0.85 * max(dot(normalize(v.normal), key), 0.0)
-        + 0.35 * max(dot(normalize(v.normal), fill), 0.0)
-        + top_light(v.world, normalize(v.normal), 0.0);
-    // (n.h)^256 by squaring.
-    let h = normalize(key + view_dir);
-    let c = max(dot(n, h), 0.0);
-    let c4 = (c * c) * (c * c);
-    let c16 = (c4 * c4) * (c4 * c4);
-    let c64 = (c16 * c16) * (c16 * c16);
-    let c256 = (c64 * c64) * (c64 * c64);
-    let hf = normalize(fill + view_dir);
-    let cf = max(dot(n, hf), 0.0);
-    let cf4 = (cf * cf) * (cf * cf);
-    let cf16 = (cf4 * cf4) * (cf4 * cf4);
-    let cf64 = (cf16 * cf16) * (cf16 * cf16);
+    // Diffuse on the eyeball's own sphere, the highlights on the cornea.
+    let diffuse = key_fill_top(v.world, normalize(v.normal));
+    let c16 = pow4(pow4(max(dot(n, normalize(key + view_dir)), 0.0)));
+    let c256 = pow4(pow4(c16));
+    let cf64 = pow4(pow4(pow4(max(dot(n, normalize(fill + view_dir)), 0.0))));
     let spec = 1.6 * c256 + 0.12 * c16 + 0.5 * cf64 * cf64;
     return vec4<f32>(base * (0.22 + diffuse) + vec3<f32>(spec), 1.0);
 }
@@ -492,15 +496,10 @@ fn fs_scalp(v: VOut) -> @location(0) vec4<f32> {
     let back = (inst.model * vec4<f32>(0.0, -0.35, -1.0, 0.0)).xyz;
     let t = normalize(back - n * dot(back, n) + n * 1e-4);
     let key = normalize(-g.key_dir.xyz);
-    let fill = normalize(-g.fill_dir.xyz);
-    let h = normalize(key + view_dir);
-    let th = dot(t, h);
-    let s = sqrt(max(1.0 - th * th, 0.0));
-    let s4 = (s * s) * (s * s);
-    let s16 = (s4 * s4) * (s4 * s4);
-    let s64 = (s16 * s16) * (s16 * s16);
-    let diffuse = 0.85 * max(dot(n, key), 0.0) + 0.35 * max(dot(n, fill), 0.0)
-        + top_light(v.world, n, 0.0);
+    let th = dot(t, normalize(key + view_dir));
+    let s16 = pow4(pow4(sqrt(max(1.0 - th * th, 0.0))));
+    let s64 = pow4(s16);
+    let diffuse = key_fill_top(v.world, n);
     // Strands lie in lanes round the head's front-to-back axis.
     let around = 0.09 * atan2(v.local.x, v.local.y + 0.02);
     let hairs = strokes(vec2<f32>(around, v.local.z), vec2<f32>(0.0, 1.0), 0.0005, 0.008, 0.6);

@@ -186,9 +186,7 @@ impl FaceState {
                 .lid_follow_k(e, 1, pitch, bp.lower_lid_follow_gain as f32);
             // AU 6's cheek pushes the lower lid up.
             let orbital = a.k[ch(MuscleKind::OculiOrbital)].max(0.0);
-            a.k[lower] += face
-                .rig
-                .lower_lid_k(e, bp.cheek_lid_rise_m as f32 * orbital);
+            a.k[lower] += face.rig.lid_k(e, 1, bp.cheek_lid_rise_m as f32 * orbital); // (L2)
             let i = ch(MuscleKind::OculiUpperPalpebral);
             // A relaxation (AU 5) stands for levator's raise.
             let expressed = face.rig.levator_k(

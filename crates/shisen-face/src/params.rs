@@ -36,6 +36,7 @@ pub struct Influence {
 
 /// Blink constants (face.md 6 and table D note).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct BlinkParams {
     /// AU45 upper palpebral contraction at full closure (2.9).
     #[serde(deserialize_with = "shisen_gaze::util::check::positive")]
@@ -81,9 +82,11 @@ pub struct BlinkParams {
     /// (0.25) lifts it 2 mm more than the sphincter's own field does, the
     /// opening closing by about two fifths (our choice); 0 leaves the lid
     /// to the sphincter's field (the seed profile).
+    /// At most 2 cm per unit contraction (the eye's whole opening is
+    /// about 1 cm).
     #[serde(
         default = "default_cheek_lid_rise",
-        deserialize_with = "shisen_gaze::util::check::non_negative"
+        deserialize_with = "cheek_lid_rise"
     )]
     pub cheek_lid_rise_m: f64,
     /// Gain of the upper lid's raise on a relaxation of the upper
@@ -154,6 +157,10 @@ fn default_levator_gain() -> f64 {
 
 fn default_levator_max_raise() -> Option<f64> {
     Some(0.0045)
+}
+
+fn cheek_lid_rise<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    shisen_gaze::util::check::in_range(d, 0.0, 0.02)
 }
 
 fn default_cheek_lid_rise() -> f64 {
@@ -476,32 +483,42 @@ mod tests {
         assert!(e.contains("close_s"), "the field is named: {e}");
         let bad = DEFAULT_RON.replace("rf_ratio: 1.3)", "rf_ratio: 0.9)");
         assert!(FaceParams::from_ron(&bad).is_err());
-        // A wrinkle spacing in millimetres, not metres.
-        let with_skin = |spacing: &str| {
+        // The default database with one more top-level field.
+        let with = |field: &str| {
             let end = DEFAULT_RON
                 .trim_end()
                 .strip_suffix(')')
                 .expect("a RON struct");
-            format!(
-                "{end}    skin: (wrinkle_spacing_m: {spacing}, wrinkle_onset_strain: 0.25),\n)\n"
-            )
+            format!("{end}    {field},\n)\n")
         };
-        assert!(FaceParams::from_ron(&with_skin("0.006")).is_ok());
-        let e = FaceParams::from_ron(&with_skin("6.0"))
-            .unwrap_err()
-            .to_string();
+        // Skin fields after the two it needs: W4's are accepted; a
+        // spacing in millimetres (not metres), a fade or thickening out of
+        // range and a misspelt field are refused by name.
+        let with_skin = |more: &str| {
+            with(&format!(
+                "skin: (wrinkle_onset_strain: 0.25, wrinkle_spacing_m: {more})"
+            ))
+        };
         assert!(
-            e.contains("wrinkle_spacing_m") && e.contains("must be in"),
-            "{e}"
+            FaceParams::from_ron(&with_skin("0.006, thickening: 0.5, domain_fade_m: 0.01")).is_ok()
         );
+        for (more, named, why) in [
+            ("6.0", "wrinkle_spacing_m", "must be in"),
+            ("0.006, domain_fade_m: 12.0", "domain_fade_m", "must be in"),
+            ("0.006, thickening: 1.5", "thickening", "must be in"),
+            (
+                "0.006, thickenning: 0.5",
+                "skin.thickenning",
+                "Unexpected field",
+            ),
+        ] {
+            let e = FaceParams::from_ron(&with_skin(more))
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(named) && e.contains(why), "{more}: {e}");
+        }
         // The lip seal (O1): a negative or NaN bound is refused, named.
-        let with_lips = |lips: &str| {
-            let end = DEFAULT_RON
-                .trim_end()
-                .strip_suffix(')')
-                .expect("a RON struct");
-            format!("{end}    lips: ({lips}),\n)\n")
-        };
+        let with_lips = |lips: &str| with(&format!("lips: ({lips})"));
         let ok = FaceParams::from_ron(&with_lips("seal_k: None")).unwrap();
         assert_eq!(ok.lips.seal_k, None);
         for bad in [

@@ -29,6 +29,7 @@ use super::muscle::{
 use super::params::FaceParams;
 use super::tables::MuscleKind;
 use glam::Vec3;
+use shisen_gaze::util::math::smoothstep;
 
 pub use crate::lip_seal::LipSeal;
 pub use crate::spread::SparseField;
@@ -55,16 +56,11 @@ fn mask_fade(kind: MuscleKind, p: Vec3, ec: Vec3, width: f32) -> f32 {
     if kind != MuscleKind::OculiOrbital || width <= 0.0 {
         return 1.0;
     }
-    let side = ((ORBITAL_REACH - (p.x - ec.x).abs()) / width).clamp(0.0, 1.0);
+    let side = (ORBITAL_REACH - (p.x - ec.x).abs()) / width;
     // The skin in front of the eye's centre is only millimetres deep:
     // the fade toward that plane is a quarter as wide.
-    let back = ((p.z - ec.z) / (0.25 * width)).clamp(0.0, 1.0);
-    smooth(side) * smooth(back)
-}
-
-/// Smoothstep on [0, 1].
-fn smooth(x: f32) -> f32 {
-    x * x * (3.0 - 2.0 * x)
+    let back = (p.z - ec.z) / (0.25 * width);
+    smoothstep(0.0, 1.0, side) * smoothstep(0.0, 1.0, back)
 }
 
 /// Radius around each eyeball centre that lid vertices are kept outside of.
@@ -288,23 +284,18 @@ impl Rig {
     }
 
     /// Palpebral contraction that moves the mid margin of lid `lid` (0
-    /// upper, 1 lower) of eye `e` (0 left, 1 right) by `gain * eyeball
-    /// radius * sin(pitch)`: the lids follow the eye's vertical rotation
-    /// (pitch positive up). 0 if the channel cannot move that margin.
-    pub fn lid_follow_k(&self, e: usize, lid: usize, pitch: f32, gain: f32) -> f32 {
+    /// upper, 1 lower) of eye `e` (0 left, 1 right) up by `rise` metres;
+    /// 0 if the channel cannot move that margin.
+    pub fn lid_k(&self, e: usize, lid: usize, rise: f32) -> f32 {
         let c = self.lid_y_per_k[e][lid];
-        if c.abs() < 1e-6 {
-            0.0
-        } else {
-            gain * dims::EYEBALL_R * pitch.sin() / c
-        }
+        if c.abs() < 1e-6 { 0.0 } else { rise / c }
     }
 
-    /// Lower palpebral contraction that raises the mid margin of eye
-    /// `e`'s lower lid by `rise` metres (0 if the channel cannot move it).
-    pub fn lower_lid_k(&self, e: usize, rise: f32) -> f32 {
-        let c = self.lid_y_per_k[e][1];
-        if c.abs() < 1e-6 { 0.0 } else { rise / c }
+    /// Palpebral contraction by which lid `lid` of eye `e` follows the
+    /// eye's vertical rotation (pitch positive up): its mid margin moves
+    /// `gain * eyeball radius * sin(pitch)`.
+    pub fn lid_follow_k(&self, e: usize, lid: usize, pitch: f32, gain: f32) -> f32 {
+        self.lid_k(e, lid, gain * dims::EYEBALL_R * pitch.sin())
     }
 
     /// Upper palpebral contraction standing for levator palpebrae's lift of
@@ -417,7 +408,8 @@ mod tests {
                 let p = mesh.positions[i as usize];
                 assert_eq!(
                     *d,
-                    mask_fade(id.kind, p, ec, 0.012) * g.displacement(p, 1.0)
+                    mask_fade(id.kind, p, ec, params.skin.domain_fade_m as f32)
+                        * g.displacement(p, 1.0)
                 );
             }
         }

@@ -23,17 +23,19 @@
 use super::mesh::HeadMesh;
 use glam::{IVec3, Mat2, Vec2, Vec3};
 use serde::{Deserialize, Serialize};
+use shisen_gaze::util::math::{gauss, smoothstep};
 use std::collections::HashMap;
 
 /// How the skin buckles (user-editable, `skin` in the muscle database).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct SkinParams {
     /// Spacing of the expression lines, metres. Our choice, 6 mm: a
     /// raised adult forehead shows four to six lines over its 4-5 cm,
     /// frown and nose lines are as close or closer. 0 turns wrinkles off;
     /// at most 3 cm (a spacing given in millimetres would make every
     /// vertex average the whole face).
-    #[serde(deserialize_with = "wrinkle_spacing")]
+    #[serde(deserialize_with = "skin_length")]
     pub wrinkle_spacing_m: f64,
     /// Compressive strain the skin takes up without buckling (living skin
     /// is stretched over it at rest, and the fat under it thickens and
@@ -52,7 +54,7 @@ pub struct SkinParams {
     /// the nose's root (De Greef et al. 2006, Forensic Sci. Int. 159S:S126,
     /// soft-tissue depths by ultrasound). Our choice within that, 5 mm;
     /// 0 keeps Waters' fields exactly (the seed profile).
-    #[serde(default = "default_pull_spread", deserialize_with = "pull_spread")]
+    #[serde(default = "default_pull_spread", deserialize_with = "skin_length")]
     pub pull_spread_m: f64,
     /// How much the soft tissue thickens where the skin over it loses
     /// area (W4), as a fraction of its depth per unit area lost, 0-1. 1:
@@ -68,7 +70,7 @@ pub struct SkinParams {
     /// Cut off there, the field stepped the skin along a line down the
     /// cheek beside the eye in every smile. Default 0.012 (our choice); 0
     /// keeps the thesis's hard edge (the seed profile).
-    #[serde(default = "default_domain_fade", deserialize_with = "pull_spread")]
+    #[serde(default = "default_domain_fade", deserialize_with = "skin_length")]
     pub domain_fade_m: f64,
 }
 
@@ -84,15 +86,12 @@ fn default_pull_spread() -> f64 {
     0.005
 }
 
-fn pull_spread<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+/// A skin length, m: 0 to [`MAX_SPACING_M`].
+fn skin_length<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
     shisen_gaze::util::check::in_range(d, 0.0, MAX_SPACING_M)
 }
 
-fn wrinkle_spacing<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    shisen_gaze::util::check::in_range(d, 0.0, MAX_SPACING_M)
-}
-
-/// Widest line spacing (and pull spread) a database may give, m.
+/// Widest line spacing, pull spread or fade a database may give, m.
 const MAX_SPACING_M: f64 = 0.03;
 
 impl Default for SkinParams {
@@ -283,7 +282,7 @@ impl WrinkleBasis {
                 thickening * depth * (1.0 - fat)
             });
             let under = depth.max(CHEEK_DEPTH * fat);
-            let folds = smoothstep(((LINES_TO - under) / (LINES_TO - LINES_FROM)).clamp(0.0, 1.0));
+            let folds = smoothstep(LINES_TO, LINES_FROM, under);
             // Without thickening, all of the compression folds (W1-W3).
             b.line_share.push(1.0 - thickening * (1.0 - folds));
             if fat > 0.0 {
@@ -347,9 +346,8 @@ fn tissue(l: &super::mesh::Landmarks, p: Vec3, n: Vec3) -> (f32, Option<(usize, 
     if !inside {
         return (depth, None);
     }
-    let ends =
-        smoothstep(((top - p.y) / 0.008).min(1.0)) * smoothstep(((p.y - bottom) / 0.008).min(1.0));
-    let profile = smoothstep((s / FOLD_RISE).min(1.0)) * (-(s / CHEEK_REACH).powi(2)).exp() * ends;
+    let ends = smoothstep(0.0, 0.008, top - p.y) * smoothstep(0.0, 0.008, p.y - bottom);
+    let profile = smoothstep(0.0, FOLD_RISE, s) * gauss(s, CHEEK_REACH) * ends;
     (0.0, Some((usize::from(p.x < 0.0), profile)))
 }
 
@@ -382,10 +380,6 @@ const SUPERFICIAL_FAT: f32 = 0.006;
 /// 1.5 cm).
 const FOLD_RISE: f32 = 0.005;
 const CHEEK_REACH: f32 = 0.011;
-
-fn smoothstep(x: f32) -> f32 {
-    x * x * (3.0 - 2.0 * x)
-}
 
 /// Skin over less soft tissue than `LINES_FROM` folds its whole
 /// compression into lines (forehead, glabella, the nose's root, the eyes'
