@@ -12,3 +12,4 @@
 pub mod app;
 pub mod input;
 pub mod render;
+pub mod schema;

@@ -210,7 +210,7 @@ fn overrides_and_arguments_are_checked_before_anything_runs() {
     assert!(err.contains(".png"), "{err}");
     let (code, _, err) = shisen(&["render", "default", "--at", "1e12", "--out", "x.png"]);
     assert_eq!(code, 2, "{err}");
-    let (code, _, err) = shisen(&["soak", "--minutes", "1e9"]);
+    let (code, _, err) = shisen(&["soak", "--minutes", "1e5"]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("--force"), "{err}");
     let (code, _, err) = shisen(&["tune", "--from-guess"]);

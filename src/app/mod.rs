@@ -338,7 +338,7 @@ impl ShisenApp {
             "total": stats.total(),
         });
         let text = serde_json::to_string_pretty(&json).expect("plain data");
-        if let Err(e) = std::fs::write(path, text + "\n") {
+        if let Err(e) = shisen::tools::output::write_whole(path, (text + "\n").as_bytes()) {
             tracing::error!(path = %path.display(), error = %e, "cannot write the statistics");
         }
     }

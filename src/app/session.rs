@@ -51,7 +51,7 @@ impl SceneSource {
     /// Read and validate a scene file.
     pub fn load(path: &Path) -> anyhow::Result<(SceneSource, LoadedScene)> {
         let loaded = LoadedScene::load(path)?;
-        let text = std::fs::read_to_string(path)?;
+        let text = shisen::util::ron::read_text(path)?;
         Ok((
             SceneSource {
                 text,

@@ -8,8 +8,11 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 
 use shisen::tools::batch;
+use shisen::tools::output::{Outputs, write_whole};
 use shisen::tools::study::LoadedStudy;
 use shisen::tools::table::{self, ResultsFile, Shard};
+
+use crate::run::Interrupted;
 
 /// Threads for `--jobs` (default: every core).
 pub fn jobs(jobs: Option<usize>) -> Result<usize> {
@@ -33,9 +36,26 @@ pub fn test_cmd(
     if files.is_empty() {
         bail!("no scene files (.ron) in {}", show(paths));
     }
-    if let Some(dir) = out {
-        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let mut plan = Outputs::new();
+    for f in &files {
+        plan = plan.input(f);
     }
+    if let Some(p) = junit {
+        plan = plan.file("--junit", p);
+    }
+    if let Some(dir) = out {
+        if let Some((a, b)) = batch::colliding_outputs(&files) {
+            bail!(
+                "--out {}: {} and {} would write the same {}.csv; give scene files distinct names",
+                dir.display(),
+                a.display(),
+                b.display(),
+                batch::stem_of(b)
+            );
+        }
+        plan = plan.folder("--out", dir);
+    }
+    plan.check()?;
     let wall = Instant::now(); // reporting only
     let runs = batch::run_scenes(&files, jobs, shard, out);
     for r in &runs {
@@ -58,9 +78,14 @@ pub fn test_cmd(
         wall.elapsed().as_secs_f64()
     );
     if let Some(p) = junit {
-        std::fs::write(p, batch::junit(&runs))
+        write_whole(p, batch::junit(&runs, files.len(), shard).as_bytes())
             .with_context(|| format!("cannot write {}", p.display()))?;
         println!("JUnit report: {}", p.display());
+    }
+    if shisen::tools::stop_requested() {
+        return Err(
+            Interrupted("before every scene ran: the report lists them as errors".into()).into(),
+        );
     }
     Ok(if errors > 0 {
         ExitCode::from(2)
@@ -73,12 +98,24 @@ pub fn test_cmd(
 
 /// Run a study (or this shard of it) into `out`, resuming what is there.
 pub fn study_cmd(study: &Path, out: &Path, jobs: usize, shard: Shard) -> Result<()> {
+    let mut plan = Outputs::new().input(study).file("--out", out);
+    if let Some(base) = s_base(study) {
+        plan = plan.input(&base);
+    }
+    plan.check()?;
     let s = LoadedStudy::load(study)?;
     let results = ResultsFile::open(out, &s.settings(shard), &s.header())?;
     let resumed = (0..s.runs.len())
         .filter(|&k| shard.contains(k) && results.has(k))
         .count();
     let made = s.run(shard, jobs, &results)?;
+    if shisen::tools::stop_requested() {
+        return Err(Interrupted(format!(
+            "after {made} runs: {} holds every finished run; run the same command again to resume",
+            out.display()
+        ))
+        .into());
+    }
     let path = results.finish()?;
     println!(
         "study {}: {} runs in all; this job{}: {made} run now, {resumed} resumed; results in {}",
@@ -100,18 +137,22 @@ pub fn merge_cmd(inputs: &[PathBuf], out: &Path) -> Result<()> {
     if inputs.is_empty() {
         bail!("nothing to merge");
     }
+    let mut plan = Outputs::new().file("--out", out);
+    for p in inputs {
+        plan = plan.input(p);
+    }
+    plan.check()?;
     if out.extension().is_some_and(|e| e == "xml") {
         if out.exists() {
             bail!("{}: exists already; merge writes a new file", out.display());
         }
         let texts = inputs
             .iter()
-            .map(|p| {
-                std::fs::read_to_string(p).with_context(|| format!("cannot read {}", p.display()))
-            })
+            .map(|p| Ok(shisen::util::ron::read_text(p)?))
             .collect::<Result<Vec<_>>>()?;
         let merged = batch::merge_junit(&texts).map_err(anyhow::Error::msg)?;
-        std::fs::write(out, merged).with_context(|| format!("cannot write {}", out.display()))?;
+        write_whole(out, merged.as_bytes())
+            .with_context(|| format!("cannot write {}", out.display()))?;
         println!("{} reports merged into {}", inputs.len(), out.display());
     } else {
         let n = table::merge(inputs, out)?;
@@ -130,4 +171,10 @@ fn show(paths: &[PathBuf]) -> String {
         .map(|p| p.display().to_string())
         .collect::<Vec<_>>()
         .join(", ")
+}
+
+/// The base scene a study file names, if it can be read (for the output
+/// check; the study's own loading reports what is wrong with it).
+fn s_base(study: &Path) -> Option<PathBuf> {
+    LoadedStudy::base_path(study)
 }

@@ -22,8 +22,8 @@ pub struct Cli {
     /// Window: bindings file (default: ~/.config/shisen/bindings.ron, else built in).
     #[arg(long)]
     pub bindings: Option<PathBuf>,
-    /// Window: close after this many seconds (CI).
-    #[arg(long)]
+    /// Window: close after this many seconds (CI), 0-86400.
+    #[arg(long, value_parser = number_in(0.0, 86400.0, " s"))]
     pub exit_after: Option<f64>,
     /// Window: save a screenshot here before closing (with --exit-after).
     #[arg(long)]
@@ -125,8 +125,8 @@ pub enum Command {
         /// Folder for CSV and PNG output.
         #[arg(long, default_value = "tune-out")]
         out: PathBuf,
-        /// Step size, seconds.
-        #[arg(long, default_value_t = 0.001)]
+        /// Step size, seconds (0.0001-0.01).
+        #[arg(long, default_value_t = 0.001, value_parser = number_in(0.0001, 0.01, " s"))]
         dt: f64,
     },
     /// Sweep gains (and step size) for one group in parallel on all cores,
@@ -135,8 +135,8 @@ pub enum Command {
         /// The group.
         #[arg(long, value_enum)]
         group: GroupArg,
-        /// Number of runs.
-        #[arg(long, default_value_t = 120)]
+        /// Number of runs (1-100000).
+        #[arg(long, default_value_t = 120, value_parser = count_in(1, 100_000))]
         runs: usize,
         /// A regular grid instead of seeded random samples.
         #[arg(long)]
@@ -158,8 +158,8 @@ pub enum Command {
         /// Scene files, or folders (their `.ron` files, not subfolders).
         #[arg(default_value = "scenes")]
         paths: Vec<PathBuf>,
-        /// Scenes run at once (default: every core).
-        #[arg(long)]
+        /// Scenes run at once, 1-256 (default: every core).
+        #[arg(long, value_parser = count_in(1, 256))]
         jobs: Option<usize>,
         /// Write a JUnit XML report (Surefire/Jenkins junit-10.xsd) here.
         #[arg(long)]
@@ -180,8 +180,8 @@ pub enum Command {
         /// Results CSV (re-running resumes it; other settings are refused).
         #[arg(long)]
         out: PathBuf,
-        /// Runs at once (default: every core).
-        #[arg(long)]
+        /// Runs at once, 1-256 (default: every core).
+        #[arg(long, value_parser = count_in(1, 256))]
         jobs: Option<usize>,
         /// Run only this share of the runs: I/N, 0 <= I < N.
         #[arg(long, default_value = "0/1")]
@@ -217,8 +217,8 @@ pub enum Command {
     /// Spar against a seeded random opponent for N simulated minutes,
     /// checking invariants every tick, and print a summary.
     Soak {
-        /// Simulated minutes.
-        #[arg(long, default_value_t = 1.0)]
+        /// Simulated minutes (more than 600 needs --force).
+        #[arg(long, default_value_t = 1.0, value_parser = number_in(0.001, 1e6, " min"))]
         minutes: f64,
         /// Seed of the opponent and the VH.
         #[arg(long, default_value_t = 1)]
@@ -251,6 +251,17 @@ pub enum Command {
         /// Image size, WxH.
         #[arg(long, default_value = "1400x900", value_parser = parse_size)]
         size: (u32, u32),
+    },
+    /// Print the JSON Schema of an input file kind (for editors and
+    /// validators), or with `--markdown` the whole file-format reference
+    /// (docs/scene-format.md is this output).
+    Schema {
+        /// Which file kind.
+        #[arg(value_enum)]
+        file: Option<SchemaFile>,
+        /// The reference of every file kind as Markdown instead.
+        #[arg(long, conflicts_with = "file")]
+        markdown: bool,
     },
     /// Run a scene headless to a time and render a picture of it (PNG).
     Render {
@@ -297,8 +308,8 @@ pub enum FaceCommand {
         /// Output .glb file.
         #[arg(long)]
         out: PathBuf,
-        /// Mesh resolution (latitude bands).
-        #[arg(long, default_value_t = 48)]
+        /// Mesh resolution (latitude bands, 24-400).
+        #[arg(long, default_value_t = 48, value_parser = count_in(24, 400))]
         rows: usize,
     },
     /// Render every one of the 35 emotions at full intensity, face view,
@@ -309,11 +320,11 @@ pub enum FaceCommand {
         /// Output PNG.
         #[arg(long)]
         out: PathBuf,
-        /// Mesh resolution (latitude bands).
-        #[arg(long, default_value_t = 100)]
+        /// Mesh resolution (latitude bands, 24-400).
+        #[arg(long, default_value_t = 100, value_parser = count_in(24, 400))]
         rows: usize,
-        /// Size of one face, WxH pixels.
-        #[arg(long, default_value = "220x250", value_parser = parse_size)]
+        /// Size of one face, WxH pixels (64-1024 each).
+        #[arg(long, default_value = "220x250", value_parser = parse_cell)]
         cell: (u32, u32),
         /// The basic expressions' sheet instead of the 35 emotions'.
         #[arg(long)]
@@ -363,16 +374,33 @@ pub enum OverlayArg {
 }
 
 pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    size_in(s, 64, 8192)
+}
+
+/// One face of a contact sheet (35 of them make the sheet).
+fn parse_cell(s: &str) -> Result<(u32, u32), String> {
+    size_in(s, 64, 1024)
+}
+
+fn size_in(s: &str, lo: u32, hi: u32) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once('x')
         .ok_or_else(|| format!("expected WxH, got `{s}`"))?;
     let n = |v: &str| {
         v.parse::<u32>()
             .ok()
-            .filter(|v| (64..=8192).contains(v))
-            .ok_or_else(|| format!("size must be 64-8192 pixels, got `{v}`"))
+            .filter(|v| (lo..=hi).contains(v))
+            .ok_or_else(|| format!("size must be {lo}-{hi} pixels, got `{v}`"))
     };
     Ok((n(w)?, n(h)?))
+}
+
+/// A parser of a whole number within `[lo, hi]`.
+fn count_in(lo: usize, hi: usize) -> impl Fn(&str) -> Result<usize, String> + Clone {
+    move |s| match s.parse::<usize>() {
+        Ok(v) if (lo..=hi).contains(&v) => Ok(v),
+        _ => Err(format!("must be a whole number {lo}-{hi}, got {s}")),
+    }
 }
 
 pub fn parse_view(s: &str) -> Result<View, String> {
@@ -434,6 +462,23 @@ impl Cli {
         .into_iter()
         .find_map(|(set, name)| set.then_some(name))
     }
+}
+
+/// The input file kinds `shisen schema` describes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum SchemaFile {
+    /// Scene files (`shisen run`, `test`, the window's `--scene`).
+    Scene,
+    /// Study files (`shisen study`).
+    Study,
+    /// Gains files (a scene's `gains_file`, `tune --gains`).
+    Gains,
+    /// Muscle databases (a scene's `vh.face.database`).
+    Muscles,
+    /// Landmark files of an imported head (`vh.face.landmarks`).
+    Landmarks,
+    /// Bindings files (the window's `--bindings`).
+    Bindings,
 }
 
 /// `--profile` values.

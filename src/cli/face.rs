@@ -3,16 +3,15 @@
 use anyhow::{Context, Result};
 
 use crate::cli::*;
+use shisen::tools::output::{Outputs, write_whole};
 
 pub fn face_cmd(c: FaceCommand) -> Result<()> {
     use shisen::face::{Face, calibrate, exchange, mesh::MeshParams, params::FaceParams};
     match c {
         FaceCommand::Export { out, rows } => {
-            if !(24..=400).contains(&rows) {
-                anyhow::bail!("--rows: must be 24-400, got {rows}");
-            }
+            Outputs::new().file("--out", &out).check()?;
             let face = Face::new(MeshParams { rows }, FaceParams::default_params());
-            std::fs::write(&out, exchange::export_glb(&face))
+            write_whole(&out, &exchange::export_glb(&face))
                 .with_context(|| format!("cannot write {}", out.display()))?;
             println!(
                 "{}: {} vertices, {} triangles, morph targets per muscle and ARKit shape",
@@ -26,10 +25,14 @@ pub fn face_cmd(c: FaceCommand) -> Result<()> {
             rows,
             cell,
             basic,
-        } => sheet(&out, rows, cell, basic)?,
+        } => {
+            Outputs::new().file("--out", &out).check()?;
+            sheet(&out, rows, cell, basic)?
+        }
         FaceCommand::Calibrate { csv, out } => {
+            Outputs::new().input(&csv).file("--out", &out).check()?;
             let params = calibrate::calibrate_file(&FaceParams::default_params(), &csv)?;
-            std::fs::write(&out, params.to_ron())
+            write_whole(&out, params.to_ron().as_bytes())
                 .with_context(|| format!("cannot write {}", out.display()))?;
             println!("muscle database written to {}", out.display());
         }
@@ -48,9 +51,6 @@ fn sheet(out: &std::path::Path, rows: usize, cell: (u32, u32), basic: bool) -> R
     use shisen::face::tables::Emotion;
     use shisen::scene::LoadedScene;
     use shisen_app::render::{Headless, Overlays, View, write_png};
-    if !(24..=400).contains(&rows) {
-        anyhow::bail!("--rows: must be 24-400, got {rows}");
-    }
     // (emotion, intensity, view, caption), row by row.
     let three_quarter = View::Orbit {
         yaw: 0.65,
@@ -95,6 +95,12 @@ fn sheet(out: &std::path::Path, rows: usize, cell: (u32, u32), basic: bool) -> R
         let mut sim = loaded.sim();
         while sim.time() < 1.5 {
             sim.step();
+        }
+        if shisen::tools::stop_requested() {
+            return Err(crate::run::Interrupted(format!(
+                "after {k} of {n} faces; nothing written"
+            ))
+            .into());
         }
         let face = gpu.snapshot(&sim, *view, Overlays::default(), cell)?;
         let (x, y) = ((k as u32 % grid.0) * cw, (k as u32 / grid.0) * ch);

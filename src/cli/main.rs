@@ -14,17 +14,38 @@ mod tune;
 use batch::{jobs, merge_cmd, study_cmd, test_cmd};
 use cli::*;
 use face::face_cmd;
-use run::{RunArgs, render, run, soak_cmd};
+use run::{INTERRUPTED, Interrupted, RunArgs, install_interrupt, render, run, soak_cmd};
 use tune::{sweep_cmd, tune_cmd};
 
 fn report(r: Result<()>) -> ExitCode {
+    exit(r.map(|()| ExitCode::SUCCESS))
+}
+
+/// A command's exit: its code, 130 if Ctrl-C stopped it ([`Interrupted`]),
+/// 2 for any other error (bad input, an output that cannot be written).
+fn exit(r: Result<ExitCode>) -> ExitCode {
     match r {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(code) => code,
+        Err(e) if e.downcast_ref::<Interrupted>().is_some() => {
+            eprintln!("{e:#}");
+            ExitCode::from(INTERRUPTED)
+        }
         Err(e) => {
             eprintln!("error: {e:#}");
             ExitCode::from(2)
         }
     }
+}
+
+/// A command that passes (0) or fails (1) what it checks.
+fn verdict(r: Result<bool>) -> ExitCode {
+    exit(r.map(|ok| {
+        if ok {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::from(1)
+        }
+    }))
 }
 
 fn main() -> ExitCode {
@@ -59,6 +80,9 @@ fn main() -> ExitCode {
         eprintln!("error: {flag} is an option of the window; it does nothing before a subcommand");
         return ExitCode::from(2);
     }
+    if cli.command.is_some() {
+        install_interrupt();
+    }
     match cli.command {
         None if cli.print_bindings => {
             print!("{}", shisen_app::input::DEFAULT_BINDINGS_RON);
@@ -89,8 +113,22 @@ fn main() -> ExitCode {
                 menu: cli.menu,
                 render_scale: cli.render_scale.map(|s| s as f32),
             };
-            // Bad input files are usage errors (2), as for every command,
-            // and are found before a window opens.
+            // Bad input files and outputs are usage errors (2), as for
+            // every command, and are found before a window opens.
+            let mut plan = shisen::tools::output::Outputs::new();
+            for p in [&opts.scene, &opts.bindings].into_iter().flatten() {
+                plan = plan.input(p);
+            }
+            if let Some(p) = &opts.stats {
+                plan = plan.file("--stats", p);
+            }
+            if let Some(p) = &opts.screenshot {
+                plan = plan.file("--screenshot", p);
+            }
+            if let Err(e) = plan.check() {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
             if let Some(p) = &opts.scene
                 && let Err(e) = shisen::scene::LoadedScene::load(p)
             {
@@ -120,7 +158,7 @@ fn main() -> ExitCode {
             duration,
             plot,
             force,
-        }) => match run(RunArgs {
+        }) => exit(run(RunArgs {
             scene,
             trace,
             every: trace_every,
@@ -128,13 +166,7 @@ fn main() -> ExitCode {
             duration,
             plot,
             force,
-        }) {
-            Ok(code) => code,
-            Err(e) => {
-                eprintln!("error: {e:#}");
-                ExitCode::from(2)
-            }
-        },
+        })),
         Some(Command::Tune {
             group,
             gains,
@@ -166,15 +198,9 @@ fn main() -> ExitCode {
             junit,
             out,
             shard,
-        }) => match jobs(j)
-            .and_then(|j| test_cmd(&paths, j, shard, junit.as_deref(), out.as_deref()))
-        {
-            Ok(code) => code,
-            Err(e) => {
-                eprintln!("error: {e:#}");
-                ExitCode::from(2)
-            }
-        },
+        }) => {
+            exit(jobs(j).and_then(|j| test_cmd(&paths, j, shard, junit.as_deref(), out.as_deref())))
+        }
         Some(Command::Study {
             study,
             out,
@@ -183,49 +209,25 @@ fn main() -> ExitCode {
         }) => report(jobs(j).and_then(|j| study_cmd(&study, &out, j, shard))),
         Some(Command::Merge { out, inputs }) => report(merge_cmd(&inputs, &out)),
         Some(Command::Face { command }) => report(face_cmd(command)),
-        Some(Command::ExportMjcf { out }) => report(
-            std::fs::write(
-                &out,
-                shisen::tools::mjcf::mjcf(
-                    &shisen::physics::body::BodyPlan::default(),
-                    shisen::sim::DT,
-                ),
-            )
-            .with_context(|| format!("cannot write {}", out.display())),
-        ),
+        Some(Command::ExportMjcf { out }) => report(export_mjcf(&out)),
         Some(Command::Fidelity {
             scene,
             profile,
             out,
-        }) => match fidelity_cmd(scene, profile, out) {
-            Ok(true) => ExitCode::SUCCESS,
-            Ok(false) => ExitCode::from(1),
-            Err(e) => {
-                eprintln!("error: {e:#}");
-                ExitCode::from(2)
-            }
-        },
+        }) => verdict(fidelity_cmd(scene, profile, out)),
         Some(Command::Soak {
             minutes,
             seed,
             force,
-        }) => match soak_cmd(minutes, seed, force) {
-            Ok(true) => ExitCode::SUCCESS,
-            Ok(false) => ExitCode::from(1),
-            Err(e) => {
-                eprintln!("error: {e:#}");
-                ExitCode::from(2)
-            }
-        },
-        Some(Command::Plot { trace, out, size }) => {
-            match shisen::tools::plot::plot_trace(&trace, &out, size) {
-                Ok(()) => ExitCode::SUCCESS,
-                Err(e) => {
-                    eprintln!("error: {e:#}");
-                    ExitCode::from(2)
-                }
-            }
-        }
+        }) => verdict(soak_cmd(minutes, seed, force)),
+        Some(Command::Plot { trace, out, size }) => report(
+            shisen::tools::output::Outputs::new()
+                .input(&trace)
+                .file("--out", &out)
+                .check()
+                .map_err(anyhow::Error::from)
+                .and_then(|()| Ok(shisen::tools::plot::plot_trace(&trace, &out, size)?)),
+        ),
         Some(Command::Render {
             scene,
             at,
@@ -236,7 +238,7 @@ fn main() -> ExitCode {
             until,
             fps,
             slow,
-        }) => match render(
+        }) => report(render(
             &scene,
             at,
             &out,
@@ -244,14 +246,39 @@ fn main() -> ExitCode {
             view,
             &overlay,
             until.map(|u| (u, fps, slow)),
-        ) {
-            Ok(()) => ExitCode::SUCCESS,
-            Err(e) => {
-                eprintln!("error: {e:#}");
-                ExitCode::from(2)
-            }
-        },
+        )),
+        Some(Command::Schema { file, markdown }) => report(schema_cmd(file, markdown)),
     }
+}
+
+/// `shisen export-mjcf`.
+fn export_mjcf(out: &std::path::Path) -> Result<()> {
+    shisen::tools::output::Outputs::new()
+        .file("--out", out)
+        .check()?;
+    let xml =
+        shisen::tools::mjcf::mjcf(&shisen::physics::body::BodyPlan::default(), shisen::sim::DT);
+    shisen::tools::output::write_whole(out, xml.as_bytes())
+        .with_context(|| format!("cannot write {}", out.display()))
+}
+
+/// `shisen schema`: an input file kind's JSON Schema, or the reference.
+fn schema_cmd(file: Option<SchemaFile>, markdown: bool) -> Result<()> {
+    use shisen_app::schema::{FileKind, reference, schema_json};
+    if markdown {
+        print!("{}", reference());
+        return Ok(());
+    }
+    let kind = match file.unwrap_or(SchemaFile::Scene) {
+        SchemaFile::Scene => FileKind::Scene,
+        SchemaFile::Study => FileKind::Study,
+        SchemaFile::Gains => FileKind::Gains,
+        SchemaFile::Muscles => FileKind::Muscles,
+        SchemaFile::Landmarks => FileKind::Landmarks,
+        SchemaFile::Bindings => FileKind::Bindings,
+    };
+    println!("{}", schema_json(kind));
+    Ok(())
 }
 
 /// `shisen fidelity`: the battery, its table, and its files if asked.
@@ -261,12 +288,11 @@ fn fidelity_cmd(
     out: Option<std::path::PathBuf>,
 ) -> Result<bool> {
     use shisen::tools::fidelity;
-    if let Some(dir) = &out
-        && dir.exists()
-        && !dir.is_dir()
-    {
-        anyhow::bail!("--out: {} exists and is not a folder", dir.display());
+    let mut plan = shisen::tools::output::Outputs::new();
+    if let Some(dir) = &out {
+        plan = plan.folder("--out", dir);
     }
+    plan.check()?;
     let loaded = match &scene {
         Some(p) => load(&p.display().to_string())?,
         None => shisen::scene::LoadedScene::default_scene(),

@@ -1,11 +1,11 @@
 //! `shisen run`, `shisen render`, `shisen soak`: scenes headless.
 
+use shisen::tools::output::{Outputs, write_whole};
+use shisen::tools::stop_requested;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::Once;
-use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::{Context, Result, bail};
 use shisen::scene::validate::check_duration;
@@ -56,9 +56,13 @@ pub fn render(
     {
         anyhow::bail!("--out {}: must name a .png file", out.display());
     }
+    let mut plan = Outputs::new().file("--out", out);
+    if scene != "default" {
+        plan = plan.input(Path::new(scene));
+    }
+    plan.check()?;
     let loaded = load(scene)?;
     let mut sim = loaded.sim();
-    let stop = interrupt_flag();
     let bar = progress(at, "s simulated");
     let mut ticks = 0u64;
     while sim.time() + DT / 2.0 < at {
@@ -66,8 +70,8 @@ pub fn render(
         ticks += 1;
         if ticks.is_multiple_of(1000) {
             bar.set_position(sim.time() as u64);
-            if stop.load(Ordering::Relaxed) {
-                anyhow::bail!("interrupted at {:.1} s; nothing written", sim.time());
+            if stop_requested() {
+                return Err(Interrupted(format!("at {:.1} s; nothing written", sim.time())).into());
             }
         }
     }
@@ -87,6 +91,9 @@ pub fn render(
             let t = at + k as f64 / f64::from(fps);
             while sim.time() + DT / 2.0 < t {
                 sim.step();
+            }
+            if stop_requested() {
+                return Err(Interrupted(format!("at frame {k} of {n}; nothing written")).into());
             }
             frames.push(gpu.snapshot(&sim, view, overlays, size)?);
         }
@@ -116,9 +123,8 @@ fn write_apng(
     out: &std::path::Path,
 ) -> Result<()> {
     let (w, h) = frames[0].dimensions();
-    let file =
-        std::fs::File::create(out).with_context(|| format!("cannot write {}", out.display()))?;
-    let mut enc = png::Encoder::new(std::io::BufWriter::new(file), w, h);
+    let mut bytes = Vec::new();
+    let mut enc = png::Encoder::new(&mut bytes, w, h);
     enc.set_color(png::ColorType::Rgba);
     enc.set_depth(png::BitDepth::Eight);
     enc.set_animated(frames.len() as u32, 0)?;
@@ -128,7 +134,7 @@ fn write_apng(
         writer.write_image_data(f.as_raw())?;
     }
     writer.finish()?;
-    Ok(())
+    write_whole(out, &bytes).with_context(|| format!("cannot write {}", out.display()))
 }
 
 pub struct RunArgs {
@@ -145,8 +151,35 @@ pub struct RunArgs {
 /// minutes of wall time on one core.
 pub const LONG_RUN: f64 = 3600.0;
 
-/// Exit code of a run stopped by Ctrl-C (the shell's 128 + SIGINT).
+/// Exit code of a command stopped by Ctrl-C (the shell's 128 + SIGINT).
 pub const INTERRUPTED: u8 = 130;
+
+/// A command stopped by Ctrl-C: what it kept (exit [`INTERRUPTED`]).
+#[derive(Debug, thiserror::Error)]
+#[error("interrupted {0}")]
+pub struct Interrupted(pub String);
+
+/// How long a command has to stop by itself after Ctrl-C before the
+/// process ends anyway (exit 130): loops check the stop request between
+/// runs and every simulated second, and this bounds the rest.
+const STOP_GRACE: std::time::Duration = std::time::Duration::from_millis(800);
+
+/// Make Ctrl-C ask every long job to stop ([`shisen::tools::request_stop`]),
+/// exit 130 if the command has not ended within [`STOP_GRACE`], and at
+/// once on a second Ctrl-C. Files are written whole (renamed into place),
+/// so ending the process never leaves half a file.
+pub fn install_interrupt() {
+    // Without a handler (another one installed) Ctrl-C just ends the process.
+    let _ = ctrlc::set_handler(|| {
+        if stop_requested() {
+            std::process::exit(i32::from(INTERRUPTED));
+        }
+        shisen::tools::request_stop();
+        std::thread::sleep(STOP_GRACE);
+        eprintln!("interrupted");
+        std::process::exit(i32::from(INTERRUPTED));
+    });
+}
 
 /// `shisen run`: 0 if every expectation holds, 1 if one fails, 130 if
 /// stopped by Ctrl-C; errors (exit 2) before anything is simulated.
@@ -157,6 +190,17 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
     {
         bail!("--plot {}: must name a .png file", p.display());
     }
+    let mut plan = Outputs::new();
+    if a.scene != "default" {
+        plan = plan.input(Path::new(&a.scene));
+    }
+    if let Some(t) = &a.trace {
+        plan = plan.file("--trace", t);
+    }
+    if let Some(p) = &a.plot {
+        plan = plan.file("--plot", p);
+    }
+    plan.check()?;
     let mut loaded = load(&a.scene)?;
     if let Some(s) = a.seed {
         loaded.scene.seed = s;
@@ -201,7 +245,6 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
             println!("{line}");
         }
     };
-    let stop = interrupt_flag();
     let bar = progress(duration, "s simulated");
     let wall = std::time::Instant::now(); // reporting only; the model never reads it
     let report = headless::run_watched(
@@ -211,9 +254,14 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         a.every,
         &mut |t| {
             bar.set_position(t as u64);
-            !stop.load(Ordering::Relaxed)
+            true
         },
-    )?;
+    );
+    // A reader that went away (`--trace - | head`) ends the run quietly.
+    let report = match report {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => return Ok(ExitCode::SUCCESS),
+        r => r?,
+    };
     bar.finish_and_clear();
     drop(sink);
     let secs = wall.elapsed().as_secs_f64();
@@ -277,17 +325,6 @@ pub fn progress(total: f64, unit: &str) -> indicatif::ProgressBar {
     shisen::tools::parallel::bar(total as u64, &format!("{unit} (Ctrl-C stops)"))
 }
 
-/// Set when the user presses Ctrl-C (the handler is installed on first use).
-pub fn interrupt_flag() -> &'static AtomicBool {
-    static FLAG: AtomicBool = AtomicBool::new(false);
-    static HANDLER: Once = Once::new();
-    HANDLER.call_once(|| {
-        // Without a handler (another one installed) Ctrl-C just ends the process.
-        let _ = ctrlc::set_handler(|| FLAG.store(true, Ordering::Relaxed));
-    });
-    &FLAG
-}
-
 pub fn soak_cmd(minutes: f64, seed: u64, force: bool) -> Result<bool> {
     if !(minutes.is_finite() && minutes > 0.0) {
         anyhow::bail!("--minutes: must be a positive number, got {minutes}");
@@ -298,13 +335,12 @@ pub fn soak_cmd(minutes: f64, seed: u64, force: bool) -> Result<bool> {
             LONG_RUN / 6.0
         );
     }
-    let stop = interrupt_flag();
     let total = (minutes * 60.0) as u64;
     let bar = shisen::tools::parallel::bar(total, "s simulated (Ctrl-C stops)");
     let wall = std::time::Instant::now(); // reporting only
     let r = shisen::tools::soak::soak(minutes, seed, |f| {
         bar.set_position((f * total as f64) as u64);
-        !stop.load(Ordering::Relaxed)
+        !stop_requested()
     });
     bar.finish_and_clear();
     let secs = wall.elapsed().as_secs_f64();
@@ -339,12 +375,16 @@ pub fn soak_cmd(minutes: f64, seed: u64, force: bool) -> Result<bool> {
     for f in &r.failures {
         println!("  FAIL {f}");
     }
-    if stop.load(Ordering::Relaxed) {
-        println!("  interrupted: the figures cover the minutes simulated");
-    }
     println!(
         "  invariants {}",
         if r.passed() { "held" } else { "VIOLATED" }
     );
+    if stop_requested() {
+        return Err(Interrupted(format!(
+            "after {:.1} simulated minutes: the figures cover those",
+            r.sim_time / 60.0
+        ))
+        .into());
+    }
     Ok(r.passed())
 }

@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result};
+use shisen::tools::output::{Outputs, write_whole};
 use shisen::tools::table::{ResultsFile, Shard, settings_line};
 
 use shisen::physics::body::Group;
@@ -23,10 +24,14 @@ pub fn tune_cmd(
         anyhow::bail!("--from-guess starts the automatic tuning; give --auto with it");
     }
     use shisen::tools::tune;
-    if !(dt.is_finite() && dt > 0.0 && dt <= 0.01) {
-        anyhow::bail!("--dt: must be in (0, 0.01] s, got {dt}");
+    let mut plan = Outputs::new().folder("--out", out);
+    if let Some(p) = &gains {
+        plan = plan.input(p);
     }
-    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    if let Some(p) = &write_gains {
+        plan = plan.file("--write-gains", p);
+    }
+    plan.check()?;
     let mut g = match &gains {
         Some(p) => Gains::load(p)?,
         None => Gains::default(),
@@ -96,8 +101,11 @@ pub fn tune_cmd(
             }
         }
         let text = ron::ser::to_string_pretty(&g, ron::ser::PrettyConfig::default())?;
-        std::fs::write(&p, format!("// Written by `shisen tune`.\n{text}\n"))
-            .with_context(|| format!("cannot write {}", p.display()))?;
+        write_whole(
+            &p,
+            format!("// Written by `shisen tune`.\n{text}\n").as_bytes(),
+        )
+        .with_context(|| format!("cannot write {}", p.display()))?;
         println!("gains written to {}", p.display());
     }
     println!("CSV and plots in {}", out.display());
@@ -113,17 +121,17 @@ pub fn sweep_cmd(
     shard: Shard,
 ) -> Result<()> {
     use shisen::tools::tune;
-    let points: Vec<_> = tune::sweep_points(group, runs, grid, seed)
-        .map_err(anyhow::Error::msg)?
-        .into_iter()
-        .filter(|p| shard.contains(p.id))
-        .collect();
-    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let all = tune::sweep_points(group, runs, grid, seed).map_err(anyhow::Error::msg)?;
+    // A grid rounds the runs asked for to whole rows: the settings line
+    // names the runs made, which `merge` checks a set of shards against.
+    let total = all.len();
+    let points: Vec<_> = all.into_iter().filter(|p| shard.contains(p.id)).collect();
+    Outputs::new().folder("--out", out).check()?;
     let settings = settings_line(
         "sweep",
         &[
             ("group", format!("{group:?}")),
-            ("runs", runs.to_string()),
+            ("runs", total.to_string()),
             ("grid", grid.to_string()),
             ("seed", seed.to_string()),
         ],

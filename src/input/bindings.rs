@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use eframe::egui;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::command::{Command, PadButton, Stick, Trigger};
@@ -15,7 +16,7 @@ use shisen_gaze::util::ron::LoadError;
 pub const DEFAULT_BINDINGS_RON: &str = include_str!("bindings.ron");
 
 /// Mouse button bindings.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MouseBindings {
     /// Primary button.
@@ -27,7 +28,7 @@ pub struct MouseBindings {
 }
 
 /// Which analog control moves what.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PadAxes {
     /// Stick moving your left glove in the plane in front of you.
@@ -38,18 +39,14 @@ pub struct PadAxes {
     pub left_throw: Trigger,
     /// Trigger pushing your right glove forward.
     pub right_throw: Trigger,
-    /// Stick deflection below this is ignored (0-0.9: a larger dead zone
-    /// leaves no travel).
-    #[serde(deserialize_with = "dead_zone")]
+    /// Stick deflection below this is ignored, as a share of full
+    /// deflection (0-0.9: a larger dead zone leaves no travel).
+    #[schemars(range(min = 0.0, max = 0.9))]
     pub dead_zone: f32,
 }
 
-fn dead_zone<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f32, D::Error> {
-    shisen_gaze::util::check::in_range(d, 0.0, 0.9).map(|v| v as f32)
-}
-
 /// All bindings.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Bindings {
     /// Key name (egui's: `A`, `ArrowLeft`, `Space`, `F1`, ...) to command;
@@ -154,6 +151,16 @@ mod tests {
         assert_eq!(b.mouse.left, Some(Command::ThrowLeft));
         let again = Bindings::parse(&b.to_ron(), Path::new("x.ron")).unwrap();
         assert_eq!(again, b);
+    }
+
+    #[test]
+    fn a_dead_zone_past_its_range_is_refused() {
+        let text = DEFAULT_BINDINGS_RON.replacen("dead_zone: 0.12", "dead_zone: 0.95", 1);
+        assert_ne!(text, DEFAULT_BINDINGS_RON);
+        let e = Bindings::parse(&text, Path::new("b.ron"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("pad_axes.dead_zone"), "{e}");
     }
 
     #[test]

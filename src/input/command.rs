@@ -1,10 +1,13 @@
 //! The vocabulary of your input: commands, and the gamepad's buttons,
 //! sticks and triggers with their state.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// What a binding does.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
+)]
 pub enum Command {
     /// Move your head to your left while held.
     DodgeLeft,
@@ -55,28 +58,44 @@ impl Command {
 }
 
 /// Gamepad buttons (the standard layout, named by position).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-#[allow(missing_docs)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
+)]
 pub enum PadButton {
+    /// The bottom face button (A on Xbox, Cross on PlayStation).
     South,
+    /// The right face button (B, Circle).
     East,
+    /// The top face button (Y, Triangle).
     North,
+    /// The left face button (X, Square).
     West,
+    /// The left shoulder button (LB, L1).
     L1,
+    /// The right shoulder button (RB, R1).
     R1,
+    /// The left centre button (Back, View, Share).
     Select,
+    /// The right centre button (Start, Menu, Options).
     Start,
+    /// The logo button (Guide, Home, PS).
     Mode,
+    /// Pressing the left stick ("L3" on a PlayStation pad).
     ThumbL,
+    /// Pressing the right stick ("R3" on a PlayStation pad).
     ThumbR,
+    /// D-pad up.
     DpadUp,
+    /// D-pad down.
     DpadDown,
+    /// D-pad left.
     DpadLeft,
+    /// D-pad right.
     DpadRight,
 }
 
 /// A gamepad stick.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 pub enum Stick {
     /// Left stick.
     LeftStick,
@@ -85,7 +104,7 @@ pub enum Stick {
 }
 
 /// A gamepad trigger.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 pub enum Trigger {
     /// Left trigger, L2.
     LeftTrigger,

@@ -24,11 +24,16 @@ const MOUTH: [f32; 4] = {
 /// lowered lower lip the lower ones. Teeth are drawn only when the lips
 /// are apart (closed lips hide them; drawn, they would show through the
 /// seam).
+///
+/// A head without lip rims (an imported mesh whose mouth is not cut
+/// open) has no opening to see into: nothing is drawn.
 pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     let model = &sim.model().face;
     let (mesh, l) = (&model.mesh, &model.mesh.landmarks);
-    let mid = |rim: &[u32]| rim[rim.len() / 2] as usize;
-    let (ui, li) = (mid(&mesh.rims.upper_lip), mid(&mesh.rims.lower_lip));
+    let mid = |rim: &[u32]| Some(*rim.get(rim.len() / 2)? as usize);
+    let (Some(ui), Some(li)) = (mid(&mesh.rims.upper_lip), mid(&mesh.rims.lower_lip)) else {
+        return Vec::new();
+    };
     let (upper, lower) = (
         Vec3::from_array(face[ui].pos),
         Vec3::from_array(face[li].pos),

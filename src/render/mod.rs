@@ -99,12 +99,17 @@ impl Headless {
     }
 }
 
-/// Write an image as PNG.
+/// Write an image as PNG, whole or not at all
+/// ([`shisen::tools::output::write_whole`]).
 pub fn write_png(image: &image::RgbaImage, path: &Path) -> Result<(), RenderError> {
+    let fail = |source| RenderError::Write {
+        path: path.display().to_string(),
+        source,
+    };
+    let mut bytes = std::io::Cursor::new(Vec::new());
     image
-        .save_with_format(path, image::ImageFormat::Png)
-        .map_err(|source| RenderError::Write {
-            path: path.display().to_string(),
-            source,
-        })
+        .write_to(&mut bytes, image::ImageFormat::Png)
+        .map_err(fail)?;
+    shisen::tools::output::write_whole(path, bytes.get_ref())
+        .map_err(|e| fail(image::ImageError::IoError(e)))
 }

@@ -50,6 +50,15 @@ pub fn inverse_gaussian_cdf(x: f64, mu: f64, lambda: f64) -> f64 {
     normal_cdf(s * (x / mu - 1.0)) + (2.0 * lambda / mu).exp() * normal_cdf(-s * (x / mu + 1.0))
 }
 
+/// Shortest interval between two spontaneous blinks counted inside one
+/// step, s. A blink lasts 0.2 s (80 ms closing, 120 ms opening, face.md
+/// 6), so a second cannot begin this soon after one anyway; the floor
+/// bounds the step's loop over threshold crossings (a mean interval of
+/// 1e-300 s once made it spin for ever). At the shipped parameters
+/// (mu 4 s, lambda 13.94 s) an interval this short has a probability of
+/// about 1e-30.
+pub const MIN_BLINK_INTERVAL_S: f64 = 0.1;
+
 /// Evolving blink state: potential Y of (F8) and the current lid closure.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub struct BlinkProcess {
@@ -77,6 +86,12 @@ impl BlinkProcess {
     /// scale, so intervals scale exactly and keep their inverse-Gaussian
     /// shape): 1 at rest, [`BlinkParams::engaged_interval_scale`] while the
     /// VH is busy sparring.
+    ///
+    /// A step fires at most once per [`MIN_BLINK_INTERVAL_S`] of its
+    /// `dt` (after its first crossing, each further one inside the step
+    /// is counted at least that long after the one before), so the loop
+    /// over the step's crossings ends after at most
+    /// `dt / MIN_BLINK_INTERVAL_S + 1` passes whatever the parameters.
     pub fn step(
         &mut self,
         p: &BlinkParams,
@@ -95,7 +110,8 @@ impl BlinkProcess {
             p.mean_interval_s * interval_scale,
             p.shape_s * interval_scale,
         );
-        let mut remaining = dt;
+        // A step that is not a finite, positive time advances nothing.
+        let mut remaining = if dt.is_finite() { dt.max(0.0) } else { 0.0 };
         let mut fired = false;
         while remaining > 0.0 {
             let y0 = self.potential;
@@ -117,9 +133,15 @@ impl BlinkProcess {
             };
             match frac {
                 Some(f) => {
+                    // The time up to this crossing; after the step's
+                    // first, at least the minimum interval.
+                    let mut used = remaining * f.clamp(0.0, 1.0);
+                    if fired {
+                        used = used.max(MIN_BLINK_INTERVAL_S);
+                    }
                     fired = true;
                     self.potential = 0.0;
-                    remaining *= 1.0 - f.clamp(0.0, 1.0);
+                    remaining = (remaining - used).max(0.0);
                 }
                 None => {
                     self.potential = y1;
@@ -327,6 +349,34 @@ mod tests {
         );
         assert!(!b.gaze_shift(&p, 10.0, &mut rng));
         assert!(b.gaze_shift(&p, p.gaze_trigger_max_deg + 5.0, &mut rng));
+    }
+
+    /// The step's loop over threshold crossings ends for any parameters,
+    /// in range or not (a mean interval of 1e-300 s once spun it for
+    /// ever), and any step: the extremes the ranges allow, with the
+    /// engaged and arousal factors at their ends, and absurd values set
+    /// in code.
+    #[test]
+    fn a_step_ends_whatever_the_parameters() {
+        let mut p = FaceParams::default_params().blink;
+        let mut rng = StdRng::seed_from_u64(3);
+        // Shortest: engaged 0.25, arousal gain 3 at full arousal.
+        let fastest = 0.25 / 4.0;
+        for (mu, lambda, scale) in [
+            (0.5, 0.5, fastest),
+            (0.5, 1000.0, fastest),
+            (60.0, 1000.0, 10.0),
+            (1e-300, 1e-300, 1.0),
+            (1e300, 1e-300, 1.0),
+        ] {
+            p.mean_interval_s = mu;
+            p.shape_s = lambda;
+            let mut b = BlinkProcess::default();
+            for dt in [1e-3, 0.1, 2.0, 100.0, 0.0, -1.0, f64::NAN, f64::INFINITY] {
+                b.step(&p, dt, true, scale, &mut rng);
+                assert!(b.potential.is_finite(), "{mu} {lambda} {dt}");
+            }
+        }
     }
 
     /// While engaged (sparring) the intervals stretch by the documented

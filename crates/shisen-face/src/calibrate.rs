@@ -21,7 +21,7 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use super::params::FaceParams;
+use super::params::{FaceError, FaceParams};
 use super::tables::{Expression, MuscleKind};
 use shisen_gaze::util::ron::LoadError;
 
@@ -159,18 +159,51 @@ pub fn calibrate(base: &FaceParams, data: &SubjectData) -> FaceParams {
 
 /// Read a subject CSV file and calibrate `base` from it. A result outside
 /// the database's plausible ranges (bad subject data) is refused like a
-/// bad database file.
+/// bad database file: the error names the database's field
+/// (`expressions.Happiness.Jaw`) and points at the first row of that
+/// expression in that muscle's column.
 pub fn calibrate_file(base: &FaceParams, path: &Path) -> Result<FaceParams, LoadError> {
     let text = shisen_gaze::util::ron::read_text(path)?;
     let p = calibrate(base, &parse_csv(&text, path)?);
-    p.validate().map_err(|e| LoadError::Invalid {
-        file: path.display().to_string(),
-        line: 1,
-        col: 1,
-        field: "-".into(),
-        message: format!("the calibrated database is implausible: {e}"),
+    p.validate().map_err(|e| {
+        let (field, message) = match e {
+            FaceError::Invalid { field, message } => (field, message),
+            other => ("-".to_string(), other.to_string()),
+        };
+        let (line, col) = csv_place(&text, &field);
+        LoadError::Invalid {
+            file: path.display().to_string(),
+            line,
+            col,
+            field,
+            message: format!("the calibrated database is implausible: {message}"),
+        }
     })?;
     Ok(p)
+}
+
+/// 1-based `(line, col)` in subject CSV `text` of the value a database
+/// field `expressions.<expression>.<muscle>` was computed from: the first
+/// row of that expression, in that muscle's column; `(1, 1)` for any
+/// other field.
+fn csv_place(text: &str, field: &str) -> (usize, usize) {
+    let parts: Vec<&str> = field.split('.').collect();
+    let ["expressions", expression, muscle] = parts[..] else {
+        return (1, 1);
+    };
+    let mut rows = text
+        .lines()
+        .enumerate()
+        .map(|(n, l)| (n + 1, l.trim()))
+        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
+    let Some((_, header)) = rows.next() else {
+        return (1, 1);
+    };
+    let Some(col) = header.split(',').position(|h| h.trim() == muscle) else {
+        return (1, 1);
+    };
+    rows.find(|(_, l)| l.split(',').next().map(str::trim) == Some(expression))
+        .map_or((1, 1), |(n, _)| (n, col + 1))
 }
 
 #[cfg(test)]
@@ -260,6 +293,37 @@ mod tests {
                 } => assert_eq!((l, c, f.as_str()), (line, col, field), "{text}"),
                 other => panic!("{other}"),
             }
+        }
+    }
+
+    /// Subject data that calibrate an implausible database are refused
+    /// at the row and column they came from, with the database's field.
+    #[test]
+    fn an_implausible_calibration_names_the_field_and_its_cell() {
+        let dir = std::env::temp_dir().join(format!("shisen-cal-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("bad.csv");
+        std::fs::write(
+            &path,
+            "# subjects\nexpression,subject,ZygomaticMajor,Jaw\n\
+             Anger,a,0.1,3\nHappiness,a,0.2,45\nHappiness,b,0.2,45\n",
+        )
+        .unwrap();
+        let err = calibrate_file(&FaceParams::default_params(), &path).unwrap_err();
+        std::fs::remove_dir_all(&dir).ok();
+        match err {
+            LoadError::Invalid {
+                line,
+                col,
+                field,
+                message,
+                ..
+            } => {
+                assert_eq!((line, col), (4, 4), "{field}: {message}");
+                assert_eq!(field, "expressions.Happiness.Jaw");
+                assert!(message.contains("must be <= 30"), "{message}");
+            }
+            other => panic!("{other}"),
         }
     }
 

@@ -26,6 +26,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use glam::Vec3;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::mesh::{HeadMesh, Landmarks, Rims, compute_normals, lid_zone};
@@ -34,24 +35,40 @@ use super::params::FaceError;
 use super::params::FaceParams;
 
 /// A landmark given by vertex index or position (see the module docs).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub enum LandmarkRef {
-    /// 0-based index into the imported file's vertex list.
-    Vertex(usize),
-    /// Position in the file's units (scaled by `scale`).
-    Point(f32, f32, f32),
+    /// 0-based index into the imported file's vertex list, at most
+    /// 2^32 - 1 (the mesh's triangles index vertices with 32 bits; an
+    /// index past the file's vertices is refused when the mesh is read).
+    Vertex(#[schemars(range(min = 0, max = 4_294_967_295_u64))] usize),
+    /// Position `(x, y, z)` in the file's units (scaled by `scale`), each
+    /// within +-1e6 units: a head some 0.2 m across written in units as
+    /// small as `scale`'s smallest, a micrometre.
+    Point(
+        #[schemars(range(min = -1.0e6, max = 1.0e6))] f32,
+        #[schemars(range(min = -1.0e6, max = 1.0e6))] f32,
+        #[schemars(range(min = -1.0e6, max = 1.0e6))] f32,
+    ),
 }
 
 /// Landmark file contents (RON).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LandmarkFile {
-    /// Factor from the file's units to metres (default 1).
+    /// Factor from the file's units to metres (default 1), 1e-6-10: from
+    /// a file in micrometres to one in decametres; 0.001 for millimetres,
+    /// 0.01 for centimetres, 0.0254 for inches.
     #[serde(default = "one")]
+    #[schemars(range(min = 1.0e-6, max = 10.0))]
     pub scale: f32,
-    /// Midline to the jaw's outer edge (F7's L), metres.
+    /// Midline to the jaw's outer edge (F7's L), metres (not scaled by
+    /// `scale`), 0.01-0.25: an adult's is about 5 cm (bigonial breadth
+    /// about 10 cm, Farkas 1994, Anthropometry of the Head and Face); the
+    /// bounds are a fifth and five times that.
+    #[schemars(range(min = 0.01, max = 0.25))]
     pub jaw_half_width: f32,
-    /// Named landmarks (the fields of [`Landmarks`]).
+    /// Named landmarks (the fields of [`Landmarks`]; every one of
+    /// [`LANDMARK_NAMES`] must be given, and no other).
     pub landmarks: BTreeMap<String, LandmarkRef>,
 }
 
@@ -421,5 +438,30 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(e.starts_with("l.ron:1:"), "{e}");
+        // Every number has a range: a scale of 0, a jaw given in
+        // millimetres, a vertex index past 32 bits, a point at NaN.
+        for (text, named) in [
+            (
+                "(scale: 0.0, jaw_half_width: 0.06, landmarks: {})",
+                "l.ron:1:2: scale: must be >= ",
+            ),
+            (
+                "(jaw_half_width: 60.0, landmarks: {})",
+                "l.ron:1:2: jaw_half_width: must be <= 0.25",
+            ),
+            (
+                "(jaw_half_width: 0.06,\n landmarks: {\"chin\": Vertex(5000000000)})",
+                "l.ron:2:14: landmarks.chin.Vertex: must be <= 4294967295",
+            ),
+            (
+                "(jaw_half_width: 0.06, landmarks: {\"chin\": Point(0.0, NaN, 0.0)})",
+                "landmarks.chin.Point[1]: must be a finite number",
+            ),
+        ] {
+            let e = LandmarkFile::parse(text, Path::new("l.ron"))
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(named), "{text}: {e}");
+        }
     }
 }

@@ -7,10 +7,13 @@
 //! muscle is covered. The measured numbers (table D, influence parameters,
 //! blink and durations) are data in `scenes/face/muscles.ron` (see `params.rs`).
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// Face regions (face.md 2).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
+)]
 pub enum Region {
     /// Brows and forehead.
     Upper,
@@ -26,21 +29,23 @@ impl Region {
 }
 
 /// The basic expressions shown by one region (table A letters).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
+)]
 pub enum Expression {
-    /// N.
+    /// Neutral (N in table A): no muscle driven.
     Neutral,
-    /// H.
+    /// Happiness (H).
     Happiness,
-    /// Su.
+    /// Surprise (Su).
     Surprise,
-    /// F.
+    /// Fear (F).
     Fear,
-    /// Sa.
+    /// Sadness (Sa).
     Sadness,
-    /// D.
+    /// Disgust (D).
     Disgust,
-    /// A.
+    /// Anger (A).
     Anger,
 }
 
@@ -57,7 +62,9 @@ impl Expression {
 }
 
 /// Facial Action Units used by the model (tables B, C).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
+)]
 pub enum ActionUnit {
     /// Inner brow raiser.
     Au1,
@@ -172,7 +179,9 @@ impl ActionUnit {
 }
 
 /// Muscle kinds of table D (plus the jaw rotation channel).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
+)]
 pub enum MuscleKind {
     /// Frontalis, outer part (linear).
     FrontalisOuter,
@@ -293,44 +302,82 @@ pub fn expression_aus(e: Expression) -> &'static [ActionUnit] {
     }
 }
 
-/// The 35 emotions of table A.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-#[allow(missing_docs)]
+/// The 35 emotions of table A, each shown by its three regions'
+/// expressions (upper: brows and forehead; middle: eyes; lower: mouth,
+/// cheeks and jaw), written here as (upper, middle, lower).
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize, JsonSchema,
+)]
 pub enum Emotion {
+    /// Neutral: neutral brows, neutral eyes, neutral mouth (N, N, N).
     Neutral,
+    /// Surprise: surprised brows, surprised eyes, surprised mouth (Su, Su, Su).
     Surprise,
+    /// Questioning: surprised brows, neutral eyes, neutral mouth (Su, N, N).
     Questioning,
+    /// Interest: neutral brows, surprised eyes, neutral mouth (N, Su, N).
     Interest,
+    /// Dazed: neutral brows, neutral eyes, surprised mouth (N, N, Su).
     Dazed,
+    /// Questioning surprise: surprised brows, surprised eyes, neutral mouth (Su, Su, N).
     QuestioningSurprise,
+    /// Astonishment: neutral brows, surprised eyes, surprised mouth (N, Su, Su).
     Astonishment,
+    /// Stunned: surprised brows, neutral eyes, surprised mouth (Su, N, Su).
     Stunned,
+    /// Fear: fearful brows, fearful eyes, fearful mouth (F, F, F).
     Fear,
+    /// Worry: fearful brows, neutral eyes, neutral mouth (F, N, N).
     Worry,
+    /// Restrained fear: neutral brows, fearful eyes, neutral mouth (N, F, N).
     RestrainedFear,
+    /// Surprise fear fear stronger: surprised brows, fearful eyes, fearful mouth (Su, F, F).
     SurpriseFearFearStronger,
+    /// Surprise fear surprise stronger: surprised brows, surprised eyes, fearful mouth (Su, Su, F).
     SurpriseFearSurpriseStronger,
+    /// Frightened: fearful brows, fearful eyes, surprised mouth (F, F, Su).
     Frightened,
+    /// Disgust: disgusted brows, disgusted eyes, disgusted mouth (D, D, D).
     Disgust,
+    /// Contempt: neutral brows, neutral eyes, disgusted mouth (N, N, D).
     Contempt,
+    /// Disbelief: surprised brows, disgusted eyes, disgusted mouth (Su, D, D).
     Disbelief,
+    /// Anger: angry brows, angry eyes, angry mouth (A, A, A).
     Anger,
+    /// Restrained anger: angry brows, neutral eyes, neutral mouth (A, N, N).
     RestrainedAnger,
+    /// Anger disgust: angry brows, disgusted eyes, disgusted mouth (A, D, D).
     AngerDisgust,
+    /// Exasperation: angry brows, angry eyes, surprised mouth (A, A, Su).
     Exasperation,
+    /// Perplexity: angry brows, angry eyes, fearful mouth (A, A, F).
     Perplexity,
+    /// Happiness: neutral brows, happy eyes, happy mouth (N, H, H).
     Happiness,
+    /// Happy surprise: surprised brows, surprised eyes, happy mouth (Su, Su, H).
     HappySurprise,
+    /// Arrogance: neutral brows, happy eyes, disgusted mouth (N, H, D).
     Arrogance,
+    /// Hidden anger: neutral brows, happy eyes, angry mouth (N, H, A).
     HiddenAnger,
+    /// Hidden fear: neutral brows, happy eyes, fearful mouth (N, H, F).
     HiddenFear,
+    /// Sadness: sad brows, sad eyes, sad mouth (Sa, Sa, Sa).
     Sadness,
+    /// Mild sadness: sad brows, sad eyes, neutral mouth (Sa, Sa, N).
     MildSadness,
+    /// Restrained sadness: sad brows, neutral eyes, neutral mouth (Sa, N, N).
     RestrainedSadness,
+    /// Sadness fear: sad brows, sad eyes, fearful mouth (Sa, Sa, F).
     SadnessFear,
+    /// Sadness anger: angry brows, angry eyes, sad mouth (A, A, Sa).
     SadnessAnger,
+    /// Determination: sad brows, sad eyes, angry mouth (Sa, Sa, A).
     Determination,
+    /// Sadness disgust: sad brows, sad eyes, disgusted mouth (Sa, Sa, D).
     SadnessDisgust,
+    /// Hidden sadness: sad brows, sad eyes, surprised mouth (Sa, Sa, Su).
     HiddenSadness,
 }
 

@@ -7,7 +7,17 @@ use super::params::FaceParams;
 use super::tables::Expression;
 
 /// Onset/offset velocity patterns of face.md 7.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Deserialize, serde::Serialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    Default,
+    serde::Deserialize,
+    serde::Serialize,
+    schemars::JsonSchema,
+)]
 pub enum Pattern {
     /// Constant velocity.
     I,
@@ -39,7 +49,17 @@ impl Pattern {
 }
 
 /// Playback speed: 1 fast (lower bound), 2 typical, 3 slow (upper bound).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Deserialize, serde::Serialize)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    Default,
+    serde::Deserialize,
+    serde::Serialize,
+    schemars::JsonSchema,
+)]
 pub enum Speed {
     /// Speed 1: the lower (fast) bound.
     Fast,

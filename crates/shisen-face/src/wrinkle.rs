@@ -22,55 +22,62 @@
 
 use super::mesh::HeadMesh;
 use glam::{IVec3, Mat2, Vec2, Vec3};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use shisen_gaze::util::math::{gauss, smoothstep};
 use std::collections::HashMap;
 
 /// How the skin buckles (user-editable, `skin` in the muscle database).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+/// Its lengths are at most 3 cm: a value given in millimetres rather
+/// than metres (6.0 for 6 mm) would make every vertex average the whole
+/// face.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SkinParams {
-    /// Spacing of the expression lines, metres. Our choice, 6 mm: a
+    /// Spacing of the expression lines, m, 0-0.03. Our choice, 6 mm: a
     /// raised adult forehead shows four to six lines over its 4-5 cm,
     /// frown and nose lines are as close or closer. 0 turns wrinkles off;
-    /// at most 3 cm (a spacing given in millimetres would make every
-    /// vertex average the whole face).
-    #[serde(deserialize_with = "skin_length")]
+    /// at most 3 cm (five times the default, wider than any line's
+    /// spacing on a face).
+    #[schemars(range(min = 0.0, max = 0.03))]
     pub wrinkle_spacing_m: f64,
     /// Compressive strain the skin takes up without buckling (living skin
     /// is stretched over it at rest, and the fat under it thickens and
-    /// bulges), 0-1. Our choice, 0.25: Waters' fields compress the skin by
+    /// bulges), a fraction, 0-1 (a strain is at most the whole length).
+    /// Our choice, 0.25: Waters' fields compress the skin by
     /// up to 0.75 near a muscle's bony end (procerus, corrugator); only the
     /// strongest compressions fold (frown, raised forehead, wrinkled nose),
     /// the pull of a smile or a weak expression leaves the skin smooth.
-    #[serde(deserialize_with = "shisen_gaze::util::check::unit_interval")]
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub wrinkle_onset_strain: f64,
-    /// Distance over which the skin spreads a linear muscle's pull, metres
-    /// (the standard deviation of S1's diffusion). Waters' cone (F2, F3)
+    /// Distance over which the skin spreads a linear muscle's pull, m,
+    /// 0-0.03 (the standard deviation of S1's diffusion). Waters' cone (F2, F3)
     /// moves the skin with a slope that jumps at the cone's edge and
     /// converges it onto the bony end, which creased the skin along a V
     /// from the nose's root in every frown; skin and the fat under it
     /// carry a pull over about their own depth, 5-7 mm at the glabella and
     /// the nose's root (De Greef et al. 2006, Forensic Sci. Int. 159S:S126,
     /// soft-tissue depths by ultrasound). Our choice within that, 5 mm;
-    /// 0 keeps Waters' fields exactly (the seed profile).
-    #[serde(default = "default_pull_spread", deserialize_with = "skin_length")]
+    /// 0 keeps Waters' fields exactly (the seed profile). At most 3 cm,
+    /// four times the deepest soft tissue of the face.
+    #[serde(default = "default_pull_spread")]
+    #[schemars(range(min = 0.0, max = 0.03))]
     pub pull_spread_m: f64,
     /// How much the soft tissue thickens where the skin over it loses
     /// area (W4), as a fraction of its depth per unit area lost, 0-1. 1:
-    /// the layer keeps its volume; 0 leaves the surface where the muscles
-    /// put it (the seed profile).
-    #[serde(
-        default = "default_thickening",
-        deserialize_with = "shisen_gaze::util::check::unit_interval"
-    )]
+    /// the layer keeps its volume (it cannot gain more); 0 leaves the
+    /// surface where the muscles put it (the seed profile).
+    #[serde(default = "default_thickening")]
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub thickening: f64,
     /// Width over which a muscle's field fades out toward the edges of
-    /// the domain it is confined to (the orbital orbicularis's), m, 0-3 cm.
-    /// Cut off there, the field stepped the skin along a line down the
+    /// the domain it is confined to (the orbital orbicularis's), m, 0-0.03
+    /// (the eye's opening, which the orbital part rings, is about 3 cm
+    /// wide). Cut off there, the field stepped the skin along a line down the
     /// cheek beside the eye in every smile. Default 0.012 (our choice); 0
     /// keeps the thesis's hard edge (the seed profile).
-    #[serde(default = "default_domain_fade", deserialize_with = "skin_length")]
+    #[serde(default = "default_domain_fade")]
+    #[schemars(range(min = 0.0, max = 0.03))]
     pub domain_fade_m: f64,
 }
 
@@ -85,14 +92,6 @@ fn default_thickening() -> f64 {
 fn default_pull_spread() -> f64 {
     0.005
 }
-
-/// A skin length, m: 0 to [`MAX_SPACING_M`].
-fn skin_length<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    shisen_gaze::util::check::in_range(d, 0.0, MAX_SPACING_M)
-}
-
-/// Widest line spacing, pull spread or fade a database may give, m.
-const MAX_SPACING_M: f64 = 0.03;
 
 impl Default for SkinParams {
     fn default() -> Self {

@@ -21,6 +21,7 @@
 //!   them to go"); the capture is transient, a few hundred ms.
 
 use glam::DVec3;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::behaviour::TopDown;
@@ -29,42 +30,58 @@ use crate::vision::Seen;
 pub use crate::target::{BodyId, Source, Spot, TargetId};
 
 /// Attention parameters (scene `vh.attention`).
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct AttentionParams {
     /// Whether bottom-up saliency competes at all.
     pub bottom_up: bool,
-    /// Time constant of the saliency low-pass filter, s.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// Time constant of the saliency low-pass filter, s, 0-5. Default
+    /// 0.03 (a few ticks); 0 is no filter. Beyond seconds the VH would
+    /// not notice a punch before it lands.
+    #[schemars(range(min = 0.0, max = 5.0))]
     pub smoothing_tau: f64,
-    /// Minimum time on a new gaze target, s.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// Minimum time on a new gaze target, s, 0-10. Default 0.15 (human
+    /// fixations last 0.2-0.6 s); 10 s holds a target through any
+    /// exchange.
+    #[schemars(range(min = 0.0, max = 10.0))]
     pub min_fixation: f64,
-    /// A challenger this many times stronger interrupts a fixation early.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// A challenger this many times stronger interrupts a fixation early;
+    /// a ratio, > 0 and at most 100. Default 2. Below 1 any challenger
+    /// interrupts; at 100 practically nothing does (amounts are at most
+    /// 100, and a target worth holding has one near 1 or more).
+    #[schemars(range(max = 100.0), extend("exclusiveMinimum" = 0.0))]
     pub override_ratio: f64,
-    /// Habituation time constant while a body holds the gaze bottom-up, s.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Habituation time constant while a body holds the gaze bottom-up, s,
+    /// 0.01-600. Default 2.5. The floor keeps the per-tick update stable
+    /// (10 ticks of 1 ms); 600 s, longer than a bout's round, is
+    /// habituation switched off.
+    #[schemars(range(min = 0.01, max = 600.0))]
     pub habituation_tau: f64,
-    /// Recovery time constant once the gaze has left, s.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Recovery time constant once the gaze has left, s, 0.01-600.
+    /// Default 2. Bounds as `habituation_tau`'s.
+    #[schemars(range(min = 0.01, max = 600.0))]
     pub recovery_tau: f64,
-    /// Lowest weight habituation reaches, 0-1.
-    #[serde(deserialize_with = "crate::util::check::unit_interval")]
+    /// Lowest weight habituation reaches, a fraction, 0-1. Default 0.2;
+    /// 1 is no habituation.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub habituation_floor: f64,
     /// Peak transient score of a body that comes into view (H5), as an
     /// attention amount; 0 turns onset capture off (the seed). Default 3.5:
     /// above every top-down amount of the default personality, so an
     /// onset wins the gaze and turns the head fully (M8), but below a
-    /// strong boxer's A_face (4), who keeps watching the face.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// strong boxer's A_face (4), who keeps watching the face. 0-100, the
+    /// bound of every attention amount (see `vh.personality`).
+    #[schemars(range(min = 0.0, max = 100.0))]
     pub onset_gain: f64,
-    /// Decay time constant of the onset transient, s. Default 0.3.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Decay time constant of the onset transient, s, > 0 and at most 10.
+    /// Default 0.3: onset capture is transient, a few hundred ms
+    /// (Theeuwes et al. 1998); 10 s is far beyond any capture.
+    #[schemars(range(max = 10.0), extend("exclusiveMinimum" = 0.0))]
     pub onset_tau: f64,
     /// A body must have been out of view this long for its return to count
-    /// as an onset, s. Default 0.15.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// as an onset, s, 0-10. Default 0.15; 10 s counts only bodies long
+    /// gone.
+    #[schemars(range(min = 0.0, max = 10.0))]
     pub onset_absence: f64,
 }
 

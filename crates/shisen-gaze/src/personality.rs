@@ -2,46 +2,46 @@
 //! top-down request pulls the gaze, and the amounts between which the head
 //! law (M8) goes from barely turning to facing the target.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 /// The personality amounts (gaze.md 5, 9): top-down attention per action
 /// and the head-movement law's A1, A2.
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+///
+/// Attention amounts are on the scale of bottom-up saliency (M1), whose
+/// scores are speeds in m/s and rad/s, rarely above 20; the seed's amounts
+/// are 1.5 and 3. Every amount is bounded at 100, five times any saliency
+/// a body reaches.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct Personality {
-    /// Top-down amount while idle (look at the opponent's face).
-    #[serde(deserialize_with = "amount")]
+    /// Top-down amount while idle (look at the opponent's face), 0-100.
+    /// Default 1.5; a strong boxer's 4, a weak one's 0.5.
+    #[schemars(range(min = 0.0, max = 100.0))]
     pub a_face: f64,
-    /// Top-down amount of the attack target.
-    #[serde(deserialize_with = "amount")]
+    /// Top-down amount of the attack target, 0-100. Default 3.
+    #[schemars(range(min = 0.0, max = 100.0))]
     pub a_attack: f64,
-    /// Top-down amount of the guarded point.
-    #[serde(deserialize_with = "amount")]
+    /// Top-down amount of the guarded point, 0-100. Default 3.
+    #[schemars(range(min = 0.0, max = 100.0))]
     pub a_guard: f64,
-    /// Attention amount at which the head moves least (M8).
-    #[serde(deserialize_with = "amount")]
+    /// Attention amount at which the head moves least (M8), 0-100.
+    /// Default 0.
+    #[schemars(range(min = 0.0, max = 100.0))]
     pub a1: f64,
-    /// Attention amount at which the head moves most (M8); must exceed `a1`.
-    #[serde(deserialize_with = "amount")]
+    /// Attention amount at which the head moves most (M8), 0-100; must
+    /// exceed `a1`. Default 3.
+    #[schemars(range(min = 0.0, max = 100.0))]
     pub a2: f64,
     /// Share of punches at the head the VH evades (slips, ducks, leans
     /// away from) rather than blocks, 0-1. Default 0.7. A strong boxer
-    /// slips and counters; a weak one covers up.
-    #[serde(deserialize_with = "share")]
+    /// slips and counters; a weak one covers up. A probability.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub evade: f64,
-    /// Chance the VH counters out of a slip, 0-1. Default 0.3.
-    #[serde(deserialize_with = "share")]
+    /// Chance the VH counters out of a slip, 0-1 (a probability).
+    /// Default 0.3.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub counter: f64,
-}
-
-fn share<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    crate::util::check::in_range(d, 0.0, 1.0)
-}
-
-/// An attention amount: 0-100 (the seed's amounts are 1.5 and 3; saliency
-/// scores are m/s and rad/s, rarely above 20).
-fn amount<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    crate::util::check::in_range(d, 0.0, 100.0)
 }
 
 impl Default for Personality {

@@ -12,6 +12,7 @@
 //! application's.
 
 use glam::{DQuat, DVec3, Vec3};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 pub use crate::target::BodyId;
@@ -49,21 +50,22 @@ pub trait Scenery {
 }
 
 /// One eye's field of view around its line of sight, degrees (gaze.md 3:
-/// human monocular field).
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+/// human monocular field). Each side is 0-180 deg: a half turn is the
+/// most a field can open to one side.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct FieldOfView {
-    /// Toward the temple, 0-180.
-    #[serde(deserialize_with = "half_field")]
+    /// Toward the temple, deg, 0-180. Default 100 (human: about 100).
+    #[schemars(range(min = 0.0, max = 180.0))]
     pub temporal_deg: f64,
-    /// Toward the nose, 0-180.
-    #[serde(deserialize_with = "half_field")]
+    /// Toward the nose, deg, 0-180. Default 60 (human: about 60).
+    #[schemars(range(min = 0.0, max = 180.0))]
     pub nasal_deg: f64,
-    /// Up, 0-180.
-    #[serde(deserialize_with = "half_field")]
+    /// Up, deg, 0-180. Default 60 (human: about 60).
+    #[schemars(range(min = 0.0, max = 180.0))]
     pub up_deg: f64,
-    /// Down, 0-180.
-    #[serde(deserialize_with = "half_field")]
+    /// Down, deg, 0-180. Default 75 (human: about 75).
+    #[schemars(range(min = 0.0, max = 180.0))]
     pub down_deg: f64,
 }
 
@@ -78,23 +80,15 @@ impl Default for FieldOfView {
     }
 }
 
-/// One side of a field, degrees: at most half a turn.
-fn half_field<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    crate::util::check::in_range(d, 0.0, 180.0)
-}
-
-fn sight_distance<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    crate::util::check::in_range(d, 0.01, 1000.0)
-}
-
 /// Vision and saliency parameters (scene `vh.vision`).
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct VisionParams {
     /// Per-eye field (the same numbers mirrored for the two eyes).
     pub field: FieldOfView,
-    /// Bodies farther than this are not seen, m (0.01-1000).
-    #[serde(deserialize_with = "sight_distance")]
+    /// Bodies farther than this are not seen, m, 0.01-1000. Default 20
+    /// (the ring is a few metres across; 1 km is beyond any room or hall).
+    #[schemars(range(min = 0.01, max = 1000.0))]
     pub max_distance: f64,
     /// Whether the VH sees its own body parts.
     pub see_self: bool,
@@ -113,18 +107,14 @@ pub struct VisionParams {
     /// act on what the eyes saw this long ago. Default 0.07: visual
     /// responses reach V1 and the motion area MT 66-72 ms after a stimulus
     /// (Schmolesky et al. 1998, J. Neurophysiol. 79:3272); the seed: 0.
-    #[serde(deserialize_with = "latency")]
+    /// 0-1 s: a second covers slowed or fatigued subjects many times over.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub latency: f64,
-}
-
-/// A latency, s: 0 to 1.
-fn latency<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    crate::util::check::in_range(d, 0.0, 1.0)
 }
 
 /// The axis along which (M1) splits a body's motion into "across" and
 /// "expansion".
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 pub enum SaliencyAxis {
     /// The gaze direction (the mean of the two lines of sight), as (M1) is
     /// printed: motion across the line of sight versus along it.

@@ -131,7 +131,7 @@ impl Scene {
         let fields: Vec<(&str, f64)> = fields.iter().map(|(f, x)| (f.as_str(), *x)).collect();
         let inner = py
             .detach(|| shisen::tools::study::edit_scene(&self.inner, &fields, seed, &label))
-            .map_err(PyValueError::new_err)?;
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
         Ok(Scene { inner })
     }
 

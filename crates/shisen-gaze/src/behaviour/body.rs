@@ -6,6 +6,7 @@
 
 use glam::{DQuat, DVec3};
 use rand::{Rng, RngExt};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::{BehaviourParams, Reach};
@@ -14,7 +15,7 @@ use crate::personality::Personality;
 use crate::vision::Seen;
 
 /// A way out of a punch's path, chosen from what vision reports.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 pub enum Evasion {
     /// The head off the punch line sideways: a lateral bend and turn at
     /// the waist, knees slightly bent, to the side the punching glove is

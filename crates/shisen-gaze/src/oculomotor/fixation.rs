@@ -39,47 +39,59 @@
 use glam::DVec2;
 use rand::Rng;
 use rand_distr::{Distribution, Gamma, LogNormal, Normal, StandardNormal, Uniform};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::saccade::{SaccadeLaw, SaccadeParams, SaccadeProfile};
 
-fn log_sd<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    crate::util::check::in_range(d, 1e-3, 3.0)
-}
-
 /// Static parameters of the fixational eye-movement generator. Radians, seconds.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+///
+/// Microsaccades are at most about 1 deg by definition (2 deg in some
+/// studies); angles are bounded at 0.1 rad (5.7 deg), beyond which the
+/// movements are ordinary saccades.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct FixationParams {
     /// Off: [`FixationState::step`] returns a zero offset.
     pub enabled: bool,
-    /// Median microsaccade amplitude (rad). Default 0.3 deg.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Median microsaccade amplitude (rad). Default 0.3 deg. Above 0, at
+    /// most 0.1 rad.
+    #[schemars(range(max = 0.1), extend("exclusiveMinimum" = 0.0))]
     pub amplitude_median: f64,
-    /// Standard deviation of ln(amplitude). Default 0.5.
-    #[serde(deserialize_with = "log_sd")]
+    /// Standard deviation of ln(amplitude), 0.001-3. Default 0.5; 3 spreads
+    /// the sizes over several decades.
+    #[schemars(range(min = 0.001, max = 3.0))]
     pub amplitude_log_sd: f64,
     /// Largest microsaccade (rad); larger draws are redrawn. Default 1 deg.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Above 0, at most 0.1 rad.
+    #[schemars(range(max = 0.1), extend("exclusiveMinimum" = 0.0))]
     pub amplitude_max: f64,
-    /// Mean inter-microsaccadic interval, end to next onset (s). Default 0.6.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Mean inter-microsaccadic interval, end to next onset (s). Default 0.6
+    /// (1-2 microsaccades a second). Above 0, at most 10 s (far rarer than
+    /// any reported rate).
+    #[schemars(range(max = 10.0), extend("exclusiveMinimum" = 0.0))]
     pub interval_mean: f64,
-    /// Gamma shape of the interval. Default 2.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Gamma shape of the interval. Default 2. Above 0, at most 100 (nearly
+    /// periodic).
+    #[schemars(range(max = 100.0), extend("exclusiveMinimum" = 0.0))]
     pub interval_shape: f64,
     /// Drift diffusion coefficient D (rad^2/s), `<|dx|^2> = 4 D t`.
-    /// Default 20 arcmin^2/s = 1.692e-6 rad^2/s.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// Default 20 arcmin^2/s = 1.692e-6 rad^2/s (human 10-40 arcmin^2/s).
+    /// 0-1e-4 rad^2/s: about 60 times the default, a drift of a degree a
+    /// second.
+    #[schemars(range(min = 0.0, max = 1e-4))]
     pub drift_diffusion: f64,
     /// Offsets beyond this make the next microsaccade corrective (rad). Default 0.1 deg.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// 0-0.1 rad.
+    #[schemars(range(min = 0.0, max = 0.1))]
     pub correction_threshold: f64,
     /// Angular scatter (sd) of a corrective microsaccade's direction (rad). Default 30 deg.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// 0-3.15 rad: beyond half a turn the direction is uniform anyway.
+    #[schemars(range(min = 0.0, max = 3.15))]
     pub direction_scatter: f64,
     /// The offset never exceeds this (rad); drift is stopped at it. Default 1 deg.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Above 0, at most 0.1 rad.
+    #[schemars(range(max = 0.1), extend("exclusiveMinimum" = 0.0))]
     pub max_offset: f64,
     /// Saccade timing for microsaccades. Its `law` is ignored: microsaccades
     /// always use the main sequence (they lie on it, Zuber, Stark & Cook 1965).
@@ -108,16 +120,24 @@ impl Default for FixationParams {
     }
 }
 
+/// Draws of a microsaccade's amplitude before the maximum is taken.
+const MAX_AMPLITUDE_DRAWS: usize = 64;
+
 impl FixationParams {
     fn draw_amplitude<R: Rng + ?Sized>(&self, rng: &mut R) -> f64 {
         let d = LogNormal::new(self.amplitude_median.ln(), self.amplitude_log_sd)
             .expect("validated log-normal parameters");
-        loop {
+        // A log-normal truncated at the maximum, by rejection. The tries
+        // are bounded so that a maximum far in the lower tail cannot spin
+        // (at the shipped values a draw is seldom refused):
+        // past them the amplitude is the maximum.
+        for _ in 0..MAX_AMPLITUDE_DRAWS {
             let a = d.sample(rng);
             if a <= self.amplitude_max {
                 return a;
             }
         }
+        self.amplitude_max
     }
 
     fn draw_interval<R: Rng + ?Sized>(&self, rng: &mut R) -> f64 {
@@ -446,8 +466,30 @@ mod tests {
 
     #[test]
     fn params_deserialise() {
-        let p: FixationParams = ron::from_str("(enabled: false, interval_mean: 0.5)").unwrap();
+        let p: FixationParams = crate::util::ron::parse_ron(
+            "(enabled: false, interval_mean: 0.5)",
+            std::path::Path::new("t.ron"),
+        )
+        .unwrap();
         assert!(!p.enabled && p.interval_mean == 0.5);
-        assert!(ron::from_str::<FixationParams>("(amplitude_log_sd: 9.0)").is_err());
+        assert!(
+            crate::util::ron::parse_ron::<FixationParams>(
+                "(amplitude_log_sd: 9.0)",
+                std::path::Path::new("t.ron")
+            )
+            .is_err()
+        );
+    }
+
+    #[test]
+    fn a_maximum_far_below_the_median_cannot_spin() {
+        let p = FixationParams {
+            amplitude_median: 0.1,
+            amplitude_max: 1e-6,
+            amplitude_log_sd: 0.001,
+            ..FixationParams::default()
+        };
+        let mut rng = rand::rngs::StdRng::seed_from_u64(1);
+        assert_eq!(p.draw_amplitude(&mut rng), 1e-6);
     }
 }

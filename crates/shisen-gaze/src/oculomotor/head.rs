@@ -10,6 +10,7 @@
 //! both joints start and stop together with the same minimum-jerk shape.
 
 use glam::DVec2;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::util::math::{
@@ -18,20 +19,23 @@ use crate::util::math::{
 };
 
 /// Neck range of motion (gaze.md section 9, from Takagi & Takeda 2.1). Radians.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// Each limit is above 0 and at most 1.6 rad (92 deg), beyond any human
+/// neck's active range (rotation about 80 deg, flexion 60-80 deg).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct NeckLimits {
-    /// Rotation left/right, +- (rad). Default 70 deg.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Rotation left/right, +- (rad). Default 70 deg. Above 0, at most 1.6.
+    #[schemars(range(max = 1.6), extend("exclusiveMinimum" = 0.0))]
     pub yaw: f64,
-    /// Extension (looking up) limit (rad). Default 50 deg.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Extension (looking up) limit (rad). Default 50 deg. Above 0, at most 1.6.
+    #[schemars(range(max = 1.6), extend("exclusiveMinimum" = 0.0))]
     pub pitch_up: f64,
     /// Flexion (looking down) limit, as a positive angle (rad). Default 60 deg.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Above 0, at most 1.6.
+    #[schemars(range(max = 1.6), extend("exclusiveMinimum" = 0.0))]
     pub pitch_down: f64,
-    /// Lateral bend, +- (rad). Default 50 deg.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Lateral bend, +- (rad). Default 50 deg. Above 0, at most 1.6.
+    #[schemars(range(max = 1.6), extend("exclusiveMinimum" = 0.0))]
     pub roll: f64,
 }
 
@@ -75,32 +79,40 @@ pub struct Amount {
 }
 
 /// Static head-movement parameters (gaze.md section 9). Radians and seconds.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct HeadParams {
     /// The head moves only for gaze points farther than this from the face's
-    /// forward axis (rad). Default 30 deg.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// forward axis (rad). Default 30 deg. 0-3.15 rad: no gaze point lies
+    /// more than a half turn away.
+    #[schemars(range(min = 0.0, max = 3.15))]
     pub start_angle: f64,
     /// Delay after eye onset before a bottom-up head movement (s). Default 0.020.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// 0-1 s.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub eye_lead: f64,
-    /// Largest stop-short angle of (M8) (rad). Default 30 deg.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// Largest stop-short angle of (M8) (rad). Default 30 deg. 0-1.6 rad
+    /// (about 90 deg, beyond the eyes' range that must make up the rest).
+    #[schemars(range(min = 0.0, max = 1.6))]
     pub max_short_fall: f64,
-    /// Steepness of the (M8) sigmoid. Default 7.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Steepness of the (M8) sigmoid. Default 7. Above 0, at most 100 (a
+    /// step).
+    #[schemars(range(max = 100.0), extend("exclusiveMinimum" = 0.0))]
     pub steepness: f64,
     /// Peak head speed at zero amplitude (rad/s). Default 40 deg/s (Pejsa et al.).
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// 0.05-20 rad/s (3-1150 deg/s; the fastest head turns peak at a few
+    /// hundred deg/s).
+    #[schemars(range(min = 0.05, max = 20.0))]
     pub peak_speed_base: f64,
     /// Peak head speed per radian of amplitude (1/s). Default 8/3 (Pejsa et al.:
-    /// `Vp = (4/3 A_deg/50 + 2/5) 100 deg/s`).
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// `Vp = (4/3 A_deg/50 + 2/5) 100 deg/s`). 0-20 1/s, seven times
+    /// the default.
+    #[schemars(range(min = 0.0, max = 20.0))]
     pub peak_speed_gain: f64,
     /// Shortest head movement (s); Pejsa's law tends to zero for tiny moves.
-    /// Default 0.15 (our choice).
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Default 0.15 (our choice). 0.01-5 s: head movements last
+    /// 0.2-1 s.
+    #[schemars(range(min = 0.01, max = 5.0))]
     pub min_duration: f64,
     /// Neck range of motion.
     pub limits: NeckLimits,
@@ -400,12 +412,26 @@ mod tests {
 
     #[test]
     fn params_deserialise() {
-        let h: HeadParams = ron::from_str("(limits: (yaw: 1.0), eye_lead: 0.04)").unwrap();
+        let h: HeadParams = crate::util::ron::parse_ron(
+            "(limits: (yaw: 1.0), eye_lead: 0.04)",
+            std::path::Path::new("t.ron"),
+        )
+        .unwrap();
         assert_eq!(h.limits.yaw, 1.0);
         assert_eq!(h.limits.pitch_up, NeckLimits::default().pitch_up);
-        assert!(ron::from_str::<HeadParams>("(min_duration: 0.0)").is_err());
         assert!(
-            ron::from_str::<HeadParams>("(attention_most: 5.0)").is_err(),
+            crate::util::ron::parse_ron::<HeadParams>(
+                "(min_duration: 0.0)",
+                std::path::Path::new("t.ron")
+            )
+            .is_err()
+        );
+        assert!(
+            crate::util::ron::parse_ron::<HeadParams>(
+                "(attention_most: 5.0)",
+                std::path::Path::new("t.ron")
+            )
+            .is_err(),
             "A2 lives in the personality"
         );
     }

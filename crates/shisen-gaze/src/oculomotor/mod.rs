@@ -33,6 +33,7 @@ pub mod timing;
 
 use glam::{DQuat, DVec2, DVec3};
 use rand::Rng;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::target::TargetId;
@@ -59,7 +60,7 @@ use timing::{Aim, TimingParams};
 const MAX_EYE_RATE: f64 = 20.0;
 
 /// How the VH shifts its gaze to a new target.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 pub enum GazeShiftLaw {
     /// The reflexive laws: saccade (M2-M6), head start rule and (M8)/(M9).
     #[default]
@@ -73,7 +74,7 @@ pub enum GazeShiftLaw {
 }
 
 /// All oculomotor parameters (scene `vh.oculomotor`).
-#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct OculomotorParams {
     /// Saccade law and trigger thresholds.

@@ -21,6 +21,7 @@
 //!   lengthened.
 
 use glam::{DVec2, DVec3};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::util::math::{
@@ -33,7 +34,7 @@ use crate::util::math::{
 const MIN_RAMP_TIME: f64 = 0.005;
 
 /// Which timing law plans a saccade.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 pub enum SaccadeLaw {
     /// The seed paper's law (M5, M6): duration `T` below `A'`, else `(A - A')/L + T`.
     #[default]
@@ -43,32 +44,43 @@ pub enum SaccadeLaw {
 }
 
 /// Static saccade parameters (gaze.md section 7). Radians and seconds.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct SaccadeParams {
     /// `L`, maximum eye angular speed (rad/s). Default 500 deg/s = 8.7266 rad/s.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// 0.5-20 rad/s: the largest human saccades peak near 700 deg/s
+    /// (Bahill, Clark & Stark 1975), 20 rad/s (1150 deg/s) is the
+    /// controller's cap on any eye velocity; 0.5 rad/s (29 deg/s) is
+    /// below the slowest pathological saccades.
+    #[schemars(range(min = 0.5, max = 20.0))]
     pub max_speed: f64,
     /// `T`, the shortest saccade duration of the seed law (s). Default 0.05.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// 0.005-1 s: human saccades last 20-200 ms; the floor is the
+    /// shortest ramp the profile uses.
+    #[schemars(range(min = 0.005, max = 1.0))]
     pub min_duration: f64,
     /// Timing law.
     pub law: SaccadeLaw,
     /// Main-sequence duration at zero amplitude (s). Default 0.021 (21 ms).
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// 0.005-0.5 s, many times the human intercept either way.
+    #[schemars(range(min = 0.005, max = 0.5))]
     pub main_sequence_intercept: f64,
     /// Main-sequence duration per radian (s/rad). Default 2.2 ms/deg = 0.12605 s/rad.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// 0-1 s/rad (up to 17 ms/deg, eight times the human slope).
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub main_sequence_slope: f64,
     /// A saccade starts when either eye's error exceeds this (rad). Default 5 deg.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Above 0, at most 1.6 rad (about 90 deg, beyond the eye's 55 deg
+    /// range: only new targets then draw saccades).
+    #[schemars(range(max = 1.6), extend("exclusiveMinimum" = 0.0))]
     pub start_threshold: f64,
     /// A new target (or a catch-up) draws a saccade when an eye's error to
     /// it exceeds this (rad); nearer, pursuit glides there. Default 0.5 deg.
     /// (The seed's "pursuit resumes below 0.1 deg" end rule is not needed:
     /// a saccade ends when its planned profile does, at the goal; see
-    /// docs/model/gaze.md section 8.)
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// docs/model/gaze.md section 8.) Above 0, at most 1.6 rad (about
+    /// 90 deg, beyond the eye's range: pursuit then glides everywhere).
+    #[schemars(range(max = 1.6), extend("exclusiveMinimum" = 0.0))]
     pub new_target_threshold: f64,
 }
 
@@ -568,10 +580,24 @@ mod tests {
 
     #[test]
     fn params_deserialise_and_validate() {
-        let p: SaccadeParams = ron::from_str("(law: MainSequence)").unwrap();
+        let p: SaccadeParams =
+            crate::util::ron::parse_ron("(law: MainSequence)", std::path::Path::new("t.ron"))
+                .unwrap();
         assert_eq!(p.law, SaccadeLaw::MainSequence);
         assert_eq!(p.max_speed, seed().max_speed);
-        assert!(ron::from_str::<SaccadeParams>("(max_speed: -1.0)").is_err());
-        assert!(ron::from_str::<SaccadeParams>("(bogus: 1.0)").is_err());
+        assert!(
+            crate::util::ron::parse_ron::<SaccadeParams>(
+                "(max_speed: -1.0)",
+                std::path::Path::new("t.ron")
+            )
+            .is_err()
+        );
+        assert!(
+            crate::util::ron::parse_ron::<SaccadeParams>(
+                "(bogus: 1.0)",
+                std::path::Path::new("t.ron")
+            )
+            .is_err()
+        );
     }
 }

@@ -43,6 +43,7 @@
 use glam::{DQuat, DVec3};
 use rand::Rng;
 use rand_distr::{Distribution, Normal};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::target::TargetId;
@@ -53,14 +54,17 @@ use crate::util::math::angle_between;
 /// (Carpenter & Williams 1995). Draws are kept within
 /// [`Later::SHORTEST`], [`Later::LONGEST`] (express saccades are about
 /// 100 ms in all; "no response" draws are taken as the longest).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Later {
-    /// Median time, s (0: react at once).
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// Median time, s (0: react at once), 0-1: no draw exceeds 1 s
+    /// (`Later::LONGEST`).
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub median: f64,
-    /// Standard deviation of the rate `1/T`, 1/s.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// Standard deviation of the rate `1/T`, 1/s, 0-20 (human: about 0.2 x
+    /// the mean rate, near 1/s; at 20 most draws already fall on the
+    /// 20 ms or 1 s clamps).
+    #[schemars(range(min = 0.0, max = 20.0))]
     pub rate_sd: f64,
 }
 
@@ -96,7 +100,7 @@ impl Later {
 
 /// Human timing and limits of the gaze controller (scene
 /// `vh.oculomotor.timing`). Seconds and radians.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct TimingParams {
     /// Time from attention's choice of a new target to the saccade's onset
@@ -108,8 +112,8 @@ pub struct TimingParams {
     pub saccade_latency: Later,
     /// Delay of the pursuit drive behind the target's motion (H2), s
     /// (with `pursuit_limits`). Default 0.1 (Carl & Gellman 1987: about
-    /// 100 ms).
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// 100 ms). 0-1 s, ten times the human delay.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub pursuit_onset: f64,
     /// Whether pursuit gain falls with target speed and catch-up saccades
     /// make up the difference (H2, H3). Off: the aim is the target itself
@@ -117,51 +121,59 @@ pub struct TimingParams {
     pub pursuit_limits: bool,
     /// Target angular speed up to which pursuit gain is 1, deg/s. Default
     /// 5.7, with `gain_slope` the line through Meyer et al.'s 0.98 at
-    /// 10 deg/s and 0.75 at 60 deg/s.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// 10 deg/s and 0.75 at 60 deg/s. 0-500 deg/s: human pursuit
+    /// saturates near 100 deg/s; at 500 the gain never falls.
+    #[schemars(range(min = 0.0, max = 500.0))]
     pub gain_knee_deg_s: f64,
-    /// Loss of pursuit gain per deg/s above the knee. Default 0.0046.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// Loss of pursuit gain per deg/s above the knee, per deg/s, 0-1
+    /// (at 1 the gain reaches its floor within a deg/s). Default 0.0046.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub gain_slope: f64,
-    /// Lowest pursuit gain. Default 0.4.
-    #[serde(deserialize_with = "crate::util::check::unit_interval")]
+    /// Lowest pursuit gain, a fraction, 0-1. Default 0.4.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub gain_floor: f64,
     /// Aim-to-target angle that triggers a catch-up saccade (H3), rad.
-    /// Default 1.5 deg.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Default 1.5 deg. Above 0, at most 0.5 rad (29 deg; humans trigger
+    /// at errors of a degree or two).
+    #[schemars(range(max = 0.5), extend("exclusiveMinimum" = 0.0))]
     pub catch_up_threshold: f64,
     /// Delay of the vestibular signal into the VOR (H4), s. Default 0.01.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// 0-0.2 s, twenty times the human 7-10 ms.
+    #[schemars(range(min = 0.0, max = 0.2))]
     pub vor_latency: f64,
     /// Head acceleration up to which the VOR's gain holds (H6), deg/s^2.
     /// Default 4000: head impulses of 3000-4000 deg/s^2 keep a gain near
-    /// 0.95 (Aw et al. 1996).
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// 0.95 (Aw et al. 1996). Above 0, at most 100000 deg/s^2 (beyond any
+    /// blow's head acceleration: the VOR then never saturates).
+    #[schemars(range(max = 100000.0), extend("exclusiveMinimum" = 0.0))]
     pub vor_knee_accel: f64,
     /// Head acceleration at which the gain has fallen to `vor_min_gain`
     /// (H6), deg/s^2. Default 8000 (the top of Maas et al.'s range).
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Above 0, at most 100000 deg/s^2, as `vor_knee_accel`.
+    #[schemars(range(max = 100000.0), extend("exclusiveMinimum" = 0.0))]
     pub vor_saturated_accel: f64,
     /// The VOR's gain at and beyond `vor_saturated_accel` (H6). Default
     /// 0.72, the middle of Maas et al. 1989's 0.61-0.83; 1 turns the
-    /// saturation off.
-    #[serde(deserialize_with = "crate::util::check::unit_interval")]
+    /// saturation off. A gain, 0-1.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub vor_min_gain: f64,
     /// Time constant of the gain's return after a saturating transient
     /// (H6), s. Default 0.1 (our choice: the length of a blow's head
-    /// transient).
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// transient). Above 0, at most 10 s.
+    #[schemars(range(max = 10.0), extend("exclusiveMinimum" = 0.0))]
     pub vor_gain_recovery: f64,
     /// Time constant over which the felt head orientation drifts back to
     /// the true one without a saccade (proprioception, H6), s. Default 0.5
-    /// (our choice).
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// (our choice). Above 0, at most 60 s (a minute: the felt
+    /// orientation then barely returns between saccades).
+    #[schemars(range(max = 60.0), extend("exclusiveMinimum" = 0.0))]
     pub vestibular_recalibration: f64,
     /// How long the eyes must be off the target, as vision sees it (by more
     /// than `catch_up_threshold`), before a corrective saccade starts
     /// (H7), s. Default 0.1 (Tian et al. 2007: 135 +- 36 ms from a head
     /// impulse's onset, which comes a few tens of ms before the error).
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// 0-1 s, several times the human latency.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub corrective_latency: f64,
 }
 

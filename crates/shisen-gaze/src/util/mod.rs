@@ -4,5 +4,7 @@
 
 pub mod check;
 pub mod delay;
+pub mod locate;
 pub mod math;
 pub mod ron;
+pub mod schema;

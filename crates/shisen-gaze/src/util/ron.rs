@@ -3,6 +3,8 @@
 
 use std::path::Path;
 
+use schemars::JsonSchema;
+use serde::Serialize;
 use serde::de::DeserializeOwned;
 use thiserror::Error;
 
@@ -33,8 +35,20 @@ pub enum LoadError {
     },
 }
 
-/// Parse RON text into `T`, reporting the file, line, column and field path.
-pub fn parse_ron<T: DeserializeOwned>(text: &str, file: &Path) -> Result<T, LoadError> {
+/// Parse RON text into `T`, reporting the file, line, column and field path,
+/// and check every value against the range its type documents
+/// ([`super::schema::check`]).
+pub fn parse_ron<T: DeserializeOwned + Serialize + JsonSchema>(
+    text: &str,
+    file: &Path,
+) -> Result<T, LoadError> {
+    let value = parse_unchecked(text, file)?;
+    super::schema::check(&value, text, file)?;
+    Ok(value)
+}
+
+/// Parse RON text into `T` with only the checks its `Deserialize` makes.
+fn parse_unchecked<T: DeserializeOwned>(text: &str, file: &Path) -> Result<T, LoadError> {
     let file_s = file.display().to_string();
     let invalid = |line, col, field: String, message: String| LoadError::Invalid {
         file: file_s.clone(),
@@ -62,10 +76,18 @@ pub fn parse_ron<T: DeserializeOwned>(text: &str, file: &Path) -> Result<T, Load
             let (line, col) = (spanned.span.start.line, spanned.span.start.col);
             // The path ends in `?` where the parser had not yet read a field
             // name (a syntax error): name the enclosing field instead.
+            let unread = path.ends_with('?');
             let field = path.trim_end_matches('?').trim_end_matches('.');
-            let field = match (field.is_empty(), key_on_line(text, line)) {
+            let field = match (field.is_empty(), key_before(text, line, col)) {
                 (true, Some(key)) => key,
                 (true, None) => "-".to_string(),
+                // The parser stopped inside a value whose key it had not
+                // yet named: the nearest key written before the error.
+                (false, Some(key))
+                    if unread && !field.ends_with(&format!(".{key}")) && field != key =>
+                {
+                    format!("{field}.{key}")
+                }
                 (false, _) => field.to_string(),
             };
             let message = explain(&spanned.code.to_string(), text, line, col);
@@ -84,11 +106,18 @@ pub fn parse_ron<T: DeserializeOwned>(text: &str, file: &Path) -> Result<T, Load
     Ok(value)
 }
 
-/// The `key` of a line written `key: value`, if it is one.
-fn key_on_line(text: &str, line: usize) -> Option<String> {
-    let l = text.lines().nth(line.saturating_sub(1))?.trim_start();
-    let (key, _) = l.split_once(':')?;
-    (!key.is_empty() && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
+/// The last `key` written `key:` on line `line` before column `col`, if
+/// any (the field a syntax error is in).
+fn key_before(text: &str, line: usize, col: usize) -> Option<String> {
+    let l = text.lines().nth(line.saturating_sub(1))?;
+    let before: String = l.chars().take(col.saturating_sub(1)).collect();
+    let colon = before.rfind(':')?;
+    let head = before[..colon].trim_end();
+    let start = head
+        .rfind(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .map_or(0, |i| i + 1);
+    let key = &head[start..];
+    (!key.is_empty() && key.starts_with(|c: char| c.is_ascii_lowercase() || c == '_'))
         .then(|| key.to_string())
 }
 
@@ -110,40 +139,51 @@ fn explain(message: &str, text: &str, line: usize, col: usize) -> String {
     message.to_string()
 }
 
-/// 1-based line of the first occurrence of `needle` in `text` (for errors
-/// found after parsing, such as a reference to an undeclared body).
-pub fn line_of(text: &str, needle: &str) -> (usize, usize) {
-    match text.find(needle) {
-        Some(pos) => {
-            let before = &text[..pos];
-            let line = before.matches('\n').count() + 1;
-            let col = pos - before.rfind('\n').map_or(0, |i| i + 1) + 1;
-            (line, col)
-        }
-        None => (1, 1),
-    }
-}
-
 /// Read a whole text file, mapping failure to [`LoadError::Io`] naming it.
 /// (The OS error is the message, not a `source`, so a chain of errors
 /// prints it once.)
 pub fn read_text(path: &Path) -> Result<String, LoadError> {
-    std::fs::read_to_string(path).map_err(|e| LoadError::Io {
-        file: path.display().to_string(),
-        reason: e,
-    })
+    read_text_up_to(path, MAX_INPUT_BYTES)
 }
+
+/// [`read_text`] of a file that may be up to `max` bytes (traces and
+/// results tables, which are data rather than settings).
+pub fn read_text_up_to(path: &Path, max: u64) -> Result<String, LoadError> {
+    use std::io::Read;
+    let fail = |reason| LoadError::Io {
+        file: path.display().to_string(),
+        reason,
+    };
+    let bad = |m: String| fail(std::io::Error::new(std::io::ErrorKind::InvalidData, m));
+    let file = std::fs::File::open(path).map_err(fail)?;
+    // A device or pipe (`/dev/zero`) would be read forever, and a file
+    // larger than any input is not one.
+    let meta = file.metadata().map_err(fail)?;
+    if !meta.is_file() {
+        return Err(bad("not a regular file".into()));
+    }
+    let mut text = String::new();
+    file.take(max + 1).read_to_string(&mut text).map_err(fail)?;
+    if text.len() as u64 > max {
+        return Err(bad(format!("larger than {} MiB", max >> 20)));
+    }
+    Ok(text)
+}
+
+/// Largest input text file read (scenes, gains, studies, databases,
+/// landmarks, bindings, scripts): 16 MiB, far beyond any real one.
+pub const MAX_INPUT_BYTES: u64 = 16 << 20;
 
 impl LoadError {
     /// An unreadable file that another file names: reported at the naming
-    /// file's `line:col` and `field`, with the OS error once.
-    pub fn named_by(self, file: &Path, text: &str, needle: &str, field: &str) -> LoadError {
+    /// file's `field` (its line and column), with the OS error once.
+    pub fn named_by(self, file: &Path, text: &str, field: &str) -> LoadError {
         match self {
             LoadError::Io {
                 file: missing,
                 reason,
             } => {
-                let (line, col) = line_of(text, needle);
+                let (line, col) = super::locate::locate(text, field);
                 LoadError::Invalid {
                     file: file.display().to_string(),
                     line,

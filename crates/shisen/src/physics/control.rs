@@ -27,6 +27,7 @@
 use std::path::Path;
 
 use glam::{DVec2, Mat3, Quat, Vec3};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::physics::body::Group;
@@ -34,20 +35,29 @@ use shisen_gaze::util::math::JointAngles;
 use shisen_gaze::util::ron::{LoadError, parse_ron};
 
 /// Gains of one joint group, in physical units.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+///
+/// The schema's bounds are those of the stiffest group (the shoulder,
+/// about 0.25 kg m^2 about its pivot) at the fastest the 1 kHz step can
+/// integrate (natural frequency 1000 rad/s, damping rate 2000 1/s); each
+/// group's own, smaller limits follow from its inertia
+/// ([`crate::physics::plausible::check_gains`]: the eye's kp at most
+/// about 0.36).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct JointGains {
-    /// Proportional gain, N m / rad.
-    #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+    /// Proportional gain, N m / rad (0-250000: the shoulder's 0.25 kg m^2
+    /// at 1000 rad/s; the shipped gains are 0.03 for the eye to 305 for
+    /// the neck).
+    #[schemars(range(min = 0.0, max = 250_000.0))]
     pub kp: f64,
-    /// Derivative gain, N m s / rad.
-    #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+    /// Derivative gain, N m s / rad (0-500: the shoulder's 0.25 kg m^2 at
+    /// a damping rate of 2000 1/s; shipped 0.0002-15).
+    #[schemars(range(min = 0.0, max = 500.0))]
     pub kd: f64,
-    /// Scale of the inertia feed-forward of the planned acceleration (0 = pure PD).
-    #[serde(
-        default = "one",
-        deserialize_with = "shisen_gaze::util::check::unit_interval"
-    )]
+    /// Scale of the inertia feed-forward of the planned acceleration, 0-1
+    /// (0 = pure PD, 1 = the whole planned torque).
+    #[serde(default = "one")]
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub feedforward: f64,
 }
 
@@ -68,7 +78,7 @@ impl JointGains {
 }
 
 /// Gains per joint group (the gains file, RON). Replaceable while running.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Gains {
     /// Eyeballs (2-DOF; torsion held at zero).
@@ -316,5 +326,27 @@ mod tests {
     fn default_gains_load() {
         let g = Gains::default();
         assert!(g.eye.kp > 0.0 && g.neck.kd > 0.0);
+    }
+
+    /// Gains past what the step can integrate, or negative, are refused
+    /// where they are written.
+    #[test]
+    fn gains_out_of_range_are_refused() {
+        for (from, to, field) in [
+            ("kp: 305.45", "kp: 1e300", "neck.kp"),
+            ("kd: 12.402", "kd: -1.0", "shoulder.kd"),
+            (
+                "feedforward: 1.0),\n    elbow",
+                "feedforward: 2.0),\n    elbow",
+                "shoulder.feedforward",
+            ),
+        ] {
+            let text = DEFAULT_GAINS_RON.replacen(from, to, 1);
+            assert_ne!(text, DEFAULT_GAINS_RON, "{from}");
+            let e = parse_ron::<Gains>(&text, Path::new("g.ron"))
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains(field), "{field}: {e}");
+        }
     }
 }

@@ -26,6 +26,7 @@
 //! ```
 
 use glam::{DQuat, DVec3};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use shisen_gaze::util::math::{JointAngles, min_jerk};
 
@@ -72,7 +73,7 @@ pub mod anthro {
 }
 
 /// The lower body's parameters (scene `vh.body`).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct BodyParams {
     /// Whether the VH stands and steps (legs, footwork, the waist): the
@@ -81,71 +82,64 @@ pub struct BodyParams {
     pub human: bool,
     /// Natural frequency of the waist's PD law (W1), Hz. Default 2.5: a
     /// boxer's slip or duck takes the head 10-20 cm in about 0.2 s.
-    #[serde(deserialize_with = "frequency")]
+    /// 0.2-20 Hz (a trunk that barely follows to one eight times as
+    /// quick as the default).
+    #[schemars(range(min = 0.2, max = 20.0))]
     pub waist_frequency: f64,
-    /// Damping ratio of the waist's law. Default 1 (no overshoot).
-    #[serde(deserialize_with = "damping_ratio")]
+    /// Damping ratio of the waist's law, dimensionless. Default 1 (no
+    /// overshoot). 0.1-5 (a trunk that rings to one that creeps).
+    #[schemars(range(min = 0.1, max = 5.0))]
     pub waist_damping: f64,
     /// Strongest torque the trunk's muscles give about yaw, pitch and
     /// roll, N m. Default 90, 220, 150: maximal isometric trunk moments of
     /// healthy men (axial rotation about 60-110 N m, extension 200-300,
     /// lateral bend 120-180; e.g. Kumar, Dufresne & Garand 1991,
-    /// Ergonomics 34:1063; McGill 1992, J. Biomech. 25:395).
-    #[serde(deserialize_with = "torques")]
+    /// Ergonomics 34:1063; McGill 1992, J. Biomech. 25:395). Each 1-2000
+    /// N m (several times the strongest man's, for a trunk that must not
+    /// be limited).
+    #[schemars(inner(range(min = 1.0, max = 2000.0)))]
     pub waist_max_torque: [f64; 3],
     /// The hips' turn in the stance, deg (negative: the left hip, the lead
     /// side of an orthodox boxer, forward). The waist turns the trunk back
-    /// square to the opponent. Default -15.
-    #[serde(deserialize_with = "hip_turn")]
+    /// square to the opponent. Default -15. -60 to 60 deg (a square stance
+    /// to one side-on past any boxer's).
+    #[schemars(range(min = -60.0, max = 60.0))]
     pub hip_turn_deg: f64,
     /// Lead (left) foot's place relative to the pelvis at rest, `[x, z]`,
     /// m; the rear foot's mirrors it. Default `[0.13, 0.22]`: feet about
     /// shoulder width apart and a foot's length and a half between heels
-    /// front to back, a boxer's stance.
-    #[serde(deserialize_with = "foot_place")]
+    /// front to back, a boxer's stance. `x` 0.05-0.4 m (feet together
+    /// to a wide straddle), `z` 0-0.5 m (side by side to a long stance).
+    #[schemars(schema_with = "lead_foot_schema")]
     pub lead_foot: [f64; 2],
     /// A planted foot steps when it is this far from its place under the
-    /// moving pelvis (W2), m. Default 0.08.
-    #[serde(deserialize_with = "trigger")]
+    /// moving pelvis (W2), m. Default 0.08. 0.01-0.5 m (a foot that
+    /// shuffles at every sway to one that lets the legs straddle).
+    #[schemars(range(min = 0.01, max = 0.5))]
     pub step_trigger: f64,
     /// One foot's swing, s. Default 0.25 (see `docs/model/body.md`).
-    #[serde(deserialize_with = "swing")]
+    /// 0.05-2 s (a flick to a slow, deliberate step).
+    #[schemars(range(min = 0.05, max = 2.0))]
     pub step_time: f64,
     /// The swinging foot's highest lift, m. Default 0.04: boxers glide,
-    /// their feet barely leave the canvas.
-    #[serde(deserialize_with = "lift")]
+    /// their feet barely leave the canvas. 0-0.3 m (a slide to a high
+    /// march step).
+    #[schemars(range(min = 0.0, max = 0.3))]
     pub step_lift: f64,
 }
 
-shisen_gaze::ranged_fields! {
-    frequency: 0.2, 20.0;
-    damping_ratio: 0.1, 5.0;
-    hip_turn: -60.0, 60.0;
-    trigger: 0.01, 0.5;
-    swing: 0.05, 2.0;
-    lift: 0.0, 0.3;
-}
-
-fn torques<'de, D: serde::Deserializer<'de>>(d: D) -> Result<[f64; 3], D::Error> {
-    use serde::de::Error;
-    let v = <[f64; 3]>::deserialize(d)?;
-    if v.iter().any(|t| !(1.0..=2000.0).contains(t)) {
-        return Err(D::Error::custom(format!(
-            "each torque must lie in [1, 2000] N m, got {v:?}"
-        )));
-    }
-    Ok(v)
-}
-
-fn foot_place<'de, D: serde::Deserializer<'de>>(d: D) -> Result<[f64; 2], D::Error> {
-    use serde::de::Error;
-    let v = <[f64; 2]>::deserialize(d)?;
-    if !(0.05..=0.4).contains(&v[0]) || !(0.0..=0.5).contains(&v[1]) {
-        return Err(D::Error::custom(format!(
-            "x must lie in [0.05, 0.4] m and z in [0, 0.5] m, got {v:?}"
-        )));
-    }
-    Ok(v)
+/// The schema of [`BodyParams::lead_foot`]: `[x, z]`, each with its own
+/// range.
+fn lead_foot_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+    schemars::json_schema!({
+        "type": "array",
+        "prefixItems": [
+            {"type": "number", "minimum": 0.05, "maximum": 0.4},
+            {"type": "number", "minimum": 0.0, "maximum": 0.5},
+        ],
+        "minItems": 2,
+        "maxItems": 2,
+    })
 }
 
 impl Default for BodyParams {
@@ -526,6 +520,24 @@ mod tests {
             let t = i as f64 * dt;
             lb.step(p, &cmd(t), t, dt);
         }
+    }
+
+    /// The stance's two numbers have their own ranges (the schema's
+    /// `prefixItems`), and the file refuses what they exclude.
+    #[test]
+    fn the_stance_is_checked_per_component() {
+        use shisen_gaze::util::ron::parse_ron;
+        let file = std::path::Path::new("b.ron");
+        let p: BodyParams = parse_ron("(lead_foot: (0.3, 0.45))", file).unwrap();
+        assert_eq!(p.lead_foot, [0.3, 0.45]);
+        for bad in ["(lead_foot: (0.45, 0.3))", "(lead_foot: (0.13, -0.1))"] {
+            let e = parse_ron::<BodyParams>(bad, file).unwrap_err().to_string();
+            assert!(e.contains("lead_foot"), "{bad}: {e}");
+        }
+        let e = parse_ron::<BodyParams>("(waist_max_torque: (90, 220, 1e9))", file)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("waist_max_torque"), "{e}");
     }
 
     #[test]

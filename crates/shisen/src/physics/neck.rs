@@ -29,6 +29,7 @@
 //! with the muscles' activation time constant.
 
 use glam::Vec3;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::physics::control::{
@@ -36,8 +37,9 @@ use crate::physics::control::{
 };
 
 /// The neck's impact response (scene `vh.neck`). Torques in N m, angles
-/// in rad, times in s.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// in rad, times in s. Tone above the maximal torque is refused
+/// ([`NeckParams::validate`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct NeckParams {
     /// Whether the neck's feedback is bounded by its muscles (the human
@@ -47,59 +49,71 @@ pub struct NeckParams {
     /// Intrinsic stiffness near neutral, relaxed, N m/rad. Default 12: the
     /// cervical spine's seven motion segments in series, each about
     /// 59-86 N m/rad (Voo et al. 1998, J. Biomech. Eng. 120:693), with
-    /// resting muscle tone.
-    #[serde(deserialize_with = "stiffness")]
+    /// resting muscle tone. At most 1000 (over ten times one segment's, as
+    /// stiff as a neck in a brace).
+    #[schemars(range(min = 0.0, max = 1000.0))]
     pub stiffness: f64,
     /// Rotation at which the intrinsic spring has doubled its stiffness
     /// (N1's `e_s`), rad. Default 0.2 (11 deg): neck tissue stiffens
     /// steeply beyond its neutral zone (Voo et al. 1998 report the
-    /// segments' nonlinear, stiffening moment-angle curves).
-    #[serde(deserialize_with = "stiffening")]
+    /// segments' nonlinear, stiffening moment-angle curves). 0.01-3.2 rad
+    /// (0.6-180 deg: from a spring stiff at once to one that never
+    /// stiffens within a head's turn).
+    #[schemars(range(min = 0.01, max = 3.2))]
     pub stiffening_angle: f64,
     /// Intrinsic damping, relaxed, N m s/rad. Default 0.8 (our choice: a
     /// relaxed neck barely slows a blow while the glove is on the head;
     /// Kuo et al. 2019, J. R. Soc. Interface 16:20190086, find muscles
-    /// take under a third of the impulse while it is applied).
-    #[serde(deserialize_with = "damping")]
+    /// take under a third of the impulse while it is applied). At most 100
+    /// (a head of 0.19 kg m^2 critically damped at 260 rad/s).
+    #[schemars(range(min = 0.0, max = 100.0))]
     pub damping: f64,
     /// Factor on the intrinsic stiffness and damping when fully braced.
     /// Default 2.5: co-contraction before a known impact cuts the head's
     /// peak angular velocity by 18-29 % (Simoneau, Denninger & Hain 2008,
     /// J. Biomech. 41:2097; Homayounpour et al. 2021, J. Biomech.
-    /// 119:110732).
-    #[serde(deserialize_with = "brace_factor")]
+    /// 119:110732). 1-20 (1: bracing adds nothing; 20, eight times
+    /// the measured effect, covers any co-contraction).
+    #[schemars(range(min = 1.0, max = 20.0))]
     pub braced_factor: f64,
     /// Feedback torque the muscles' tone gives before the reflex, relaxed,
-    /// N m. Default 2 (about 5 % of the maximal torque).
-    #[serde(deserialize_with = "torque")]
+    /// N m. Default 2 (about 5 % of the maximal torque). 0-500 N m, like
+    /// [`NeckParams::max_torque`], and at most it.
+    #[schemars(range(min = 0.0, max = 500.0))]
     pub tone: f64,
-    /// The same when fully braced, N m. Default 8 (about 20 %).
-    #[serde(deserialize_with = "torque")]
+    /// The same when fully braced, N m. Default 8 (about 20 %). 0-500 N m,
+    /// and at most [`NeckParams::max_torque`].
+    #[schemars(range(min = 0.0, max = 500.0))]
     pub braced_tone: f64,
     /// Most torque the neck's muscles give, N m. Default 30: maximal
     /// isometric neck moments are about 20-50 N m across directions
-    /// (Vasavada, Li & Delp 1998, Spine 23:412).
-    #[serde(deserialize_with = "torque")]
+    /// (Vasavada, Li & Delp 1998, Spine 23:412). 0-500 N m (ten times the
+    /// strongest direction: room for a helmeted or mechanical neck).
+    #[schemars(range(min = 0.0, max = 500.0))]
     pub max_torque: f64,
     /// Relative angular speed of the head on the torso, beyond the
     /// commanded one, that stretches the neck muscles enough to start the
     /// reflex, rad/s. Default 1.5 (86 deg/s; voluntary head movements
-    /// track their command far closer than this).
-    #[serde(deserialize_with = "stretch_speed")]
+    /// track their command far closer than this). 0.01-100 rad/s (a
+    /// reflex at any twitch to one that no blow starts).
+    #[schemars(range(min = 0.01, max = 100.0))]
     pub stretch_threshold: f64,
     /// From the stretch to the reflex's onset, s. Default 0.065:
     /// sternocleidomastoid EMG onset 67-75 ms after a sudden perturbation
     /// (Siegmund et al. 2003, J. Biomech. 36:473), 59 ms in O'Driscoll et
-    /// al. 2019 (Chin. J. Traumatol. 22:80).
-    #[serde(deserialize_with = "latency")]
+    /// al. 2019 (Chin. J. Traumatol. 22:80). 0-0.5 s (past a voluntary
+    /// reaction's 0.2-0.3 s: slower than any subject's reflex).
+    #[schemars(range(min = 0.0, max = 0.5))]
     pub reflex_latency: f64,
     /// Time constant of the muscles' activation (reflex rise, bracing),
     /// s. Default 0.03 (excitation-contraction dynamics of 10-40 ms are
-    /// usual in muscle models; our choice within them).
-    #[serde(deserialize_with = "activation")]
+    /// usual in muscle models; our choice within them). 0.001-1 s (one
+    /// step to a very slow muscle; it divides the step).
+    #[schemars(range(min = 0.001, max = 1.0))]
     pub activation_time: f64,
     /// The reflex fades this long after the last stretch, s. Default 0.3.
-    #[serde(deserialize_with = "hold")]
+    /// 0-10 s (a reflex held through a whole exchange of blows).
+    #[schemars(range(min = 0.0, max = 10.0))]
     pub reflex_hold: f64,
 }
 
@@ -120,18 +134,6 @@ impl Default for NeckParams {
             reflex_hold: 0.3,
         }
     }
-}
-
-shisen_gaze::ranged_fields! {
-    stiffness: 0.0, 1000.0;
-    stiffening: 0.01, 3.2;
-    damping: 0.0, 100.0;
-    brace_factor: 1.0, 20.0;
-    torque: 0.0, 500.0;
-    stretch_speed: 0.01, 100.0;
-    latency: 0.0, 0.5;
-    activation: 0.001, 1.0;
-    hold: 0.0, 10.0;
 }
 
 impl NeckParams {

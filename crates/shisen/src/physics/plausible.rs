@@ -36,7 +36,10 @@ pub const MAX_DAMPING_RATE: f64 = 2.0 * MAX_NATURAL_FREQUENCY;
 /// Whether gains are plausible for the body: each group's natural
 /// frequency and damping rate within the bounds above. The stable PD law
 /// takes any non-negative gains, but past these a joint is a rigid weld
-/// computed in single precision, and rapier blows up.
+/// computed in single precision, and rapier blows up. The gains file's
+/// schema bounds every group's gains by the stiffest group's limits
+/// ([`crate::physics::control::JointGains`]); this check, which depends
+/// on the group's inertia, is each group's own.
 pub fn check_gains(gains: &Gains) -> Result<(), GainsError> {
     for g in Group::ALL {
         let (jg, i) = (gains.group(g), group_inertia(g));

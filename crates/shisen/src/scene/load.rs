@@ -9,7 +9,8 @@ use super::validate::validate;
 use crate::physics::control::Gains;
 use crate::sim::timeline::{Action, Event};
 use crate::sim::{Model, Params, Sim};
-use shisen_gaze::util::ron::{LoadError, line_of, parse_ron};
+use shisen_gaze::util::locate::locate;
+use shisen_gaze::util::ron::{LoadError, parse_ron};
 
 impl Scene {
     /// Parse and validate scene text without touching any other file (the
@@ -64,13 +65,15 @@ impl LoadedScene {
             (Some(g), _) => g.clone(),
             (None, Some(rel)) => {
                 let path = resolve(rel);
-                let g = Gains::load(&path)
-                    .map_err(|e| e.named_by(file, text, "gains_file", "gains_file"))?;
+                let gains_text = shisen_gaze::util::ron::read_text(&path)
+                    .map_err(|e| e.named_by(file, text, "gains_file"))?;
+                let g: Gains = parse_ron(&gains_text, &path)?;
                 if let Err(m) = crate::physics::plausible::check_gains(&g) {
+                    let (line, col) = locate(&gains_text, &m.field);
                     return Err(LoadError::Invalid {
                         file: path.display().to_string(),
-                        line: 1,
-                        col: 1,
+                        line,
+                        col,
                         field: m.field,
                         message: m.message,
                     });
@@ -140,7 +143,6 @@ fn expand_scripts(
                     err.named_by(
                         source,
                         text,
-                        &file.display().to_string(),
                         &format!("timeline[{i}].do.EmotionScript.file"),
                     )
                 })?;
@@ -174,7 +176,7 @@ fn load_face(
     let face_err = |e: FaceError| match e {
         FaceError::Parse(l) => l,
         other => {
-            let (line, col) = line_of(text, "face");
+            let (line, col) = locate(text, "vh.face");
             LoadError::Invalid {
                 file: file.display().to_string(),
                 line,
@@ -188,17 +190,8 @@ fn load_face(
         Some(rel) => {
             let p = resolve(rel);
             let t = shisen_gaze::util::ron::read_text(&p)
-                .map_err(|e| e.named_by(file, text, "database", "vh.face.database"))?;
-            FaceParams::parse(&t, &p).map_err(|e| match e {
-                shisen_face::FaceError::Invalid(m) => LoadError::Invalid {
-                    file: p.display().to_string(),
-                    line: 1,
-                    col: 1,
-                    field: "-".into(),
-                    message: format!("implausible muscle database: {m}"),
-                },
-                other => face_err(other),
-            })?
+                .map_err(|e| e.named_by(file, text, "vh.face.database"))?;
+            FaceParams::parse(&t, &p).map_err(face_err)?
         }
         None => FaceParams::default_params(),
     };
@@ -209,7 +202,7 @@ fn load_face(
         }
         #[cfg(not(feature = "mesh-io"))]
         (Some(_), Some(_)) => {
-            let (line, col) = line_of(text, "mesh");
+            let (line, col) = locate(text, "vh.face.mesh");
             Err(LoadError::Invalid {
                 file: file.display().to_string(),
                 line,
@@ -220,7 +213,7 @@ fn load_face(
         }
         (None, None) => Ok(Face::new(MeshParams { rows: c.rows }, params)),
         _ => {
-            let (line, col) = line_of(text, "mesh");
+            let (line, col) = locate(text, "vh.face");
             Err(LoadError::Invalid {
                 file: file.display().to_string(),
                 line,

@@ -7,12 +7,13 @@
 use std::fmt;
 use std::str::FromStr;
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::sim::Params;
 
 /// How good the VH is.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 pub enum Level {
     /// Slow to react (a visual reaction near 0.25 s with vision's
     /// latency, an untrained adult's: Welford 1980), seldom evades, never
@@ -30,7 +31,7 @@ pub enum Level {
 }
 
 /// How the VH fights.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 pub enum Style {
     /// Balanced: the level's values as they are.
     #[default]
@@ -46,13 +47,14 @@ pub enum Style {
 
 /// A level and a style (scene `vh.opponent: Some((level: Pro, style:
 /// Brawler))`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Opponent {
-    /// How good.
+    /// How good: `Novice`, `Amateur` (default) or `Pro`.
     #[serde(default)]
     pub level: Level,
-    /// How it fights.
+    /// How it fights: `Boxer` (default), `OutFighter`, `Brawler` or
+    /// `CounterPuncher`.
     #[serde(default)]
     pub style: Style,
 }

@@ -11,12 +11,15 @@ use crate::physics::plausible::check_gains;
 use crate::sim::DT;
 use crate::sim::expect::Expect;
 use crate::sim::timeline::{Action, Part};
-use shisen_gaze::util::ron::{LoadError, line_of};
+use shisen_gaze::util::locate::Locations;
+use shisen_gaze::util::ron::LoadError;
 
 /// Cross-field checks that need the whole scene.
 pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), LoadError> {
-    let err = |needle: &str, field: String, message: String| {
-        let (line, col) = line_of(text, needle);
+    // Errors are placed at the field they name, as the parser's are.
+    let places = Locations::scan(text);
+    let err = |field: String, message: String| {
+        let (line, col) = places.find(&field);
         LoadError::Invalid {
             file: file.display().to_string(),
             line,
@@ -27,7 +30,6 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
     };
     if scene.gains.is_some() && scene.gains_file.is_some() {
         return Err(err(
-            "gains_file",
             "gains_file".into(),
             "give either `gains` or `gains_file`, not both".into(),
         ));
@@ -35,24 +37,33 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
     if let Some(g) = &scene.gains
         && let Err(m) = check_gains(g)
     {
-        return Err(err("gains", format!("gains.{}", m.field), m.message));
+        return Err(err(format!("gains.{}", m.field), m.message));
     }
     if let Err(m) = check_duration(scene, scene.duration, true) {
-        return Err(err(m.needle, m.field, m.message));
+        return Err(err(m.field, m.message));
     }
     let p = &scene.vh.personality;
     if p.a2 <= p.a1 {
         return Err(err(
-            "a2",
             "vh.personality.a2".into(),
             format!("must exceed a1 ({}), got {}", p.a1, p.a2),
         ));
     }
     if let Err(m) = scene.vh.oculomotor.pursuit.validate() {
-        return Err(err("pursuit", "vh.oculomotor.pursuit".into(), m));
+        return Err(err("vh.oculomotor.pursuit".into(), m));
     }
     if let Err(m) = scene.vh.neck.validate() {
-        return Err(err("neck", "vh.neck".into(), m));
+        return Err(err("vh.neck".into(), m));
+    }
+    let fix = &scene.vh.oculomotor.fixation;
+    if fix.amplitude_max <= fix.amplitude_median {
+        return Err(err(
+            "vh.oculomotor.fixation.amplitude_max".into(),
+            format!(
+                "must exceed amplitude_median ({}), got {}: microsaccade amplitudes are drawn below it",
+                fix.amplitude_median, fix.amplitude_max
+            ),
+        ));
     }
     let mut names: Vec<&str> = OpponentPart::ALL.map(OpponentPart::name).to_vec();
     for (i, b) in scene.bodies.iter().enumerate() {
@@ -63,7 +74,6 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
             || ["point", "opponent_body"].contains(&b.name.as_str())
         {
             return Err(err(
-                &format!("\"{}\"", b.name),
                 format!("bodies[{i}].name"),
                 format!("name `{}` is taken or reserved", b.name),
             ));
@@ -80,7 +90,6 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
         if let Action::Track { body, until } = &e.action {
             if !names.contains(&body.as_str()) {
                 return Err(err(
-                    &format!("\"{body}\""),
                     format!("timeline[{i}].do.Track.body"),
                     format!(
                         "no body named `{body}` (opponent parts or `bodies`){}",
@@ -90,7 +99,6 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
             }
             if *until < e.at {
                 return Err(err(
-                    "until",
                     format!("timeline[{i}].do.Track.until"),
                     format!("must not precede `at` ({}), got {until}", e.at),
                 ));
@@ -106,7 +114,6 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
                 .map(|b| b.name.as_str())
                 .collect();
             return Err(err(
-                &format!("\"{name}\""),
                 format!("timeline[{i}].do.part"),
                 format!(
                     "no kinematic body named `{name}` in `bodies`{}",
@@ -114,11 +121,49 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
                 ),
             ));
         }
+        // Motions whose parts are each in range but whose speed is not a
+        // person's (or a ring's props'): checked as a whole.
+        match e.action {
+            Action::TurnHead {
+                yaw_deg,
+                pitch_deg,
+                duration,
+                ..
+            } => {
+                // The turn follows a minimum-jerk profile: its peak rate
+                // is 1.875 times the mean.
+                let peak = 1.875 * yaw_deg.abs().max(pitch_deg.abs()) / duration;
+                if peak > MAX_HEAD_TURN_DEG_S {
+                    return Err(err(
+                        format!("timeline[{i}].do.TurnHead.duration"),
+                        format!(
+                            "a {:.0} deg turn in {duration} s peaks at {peak:.0} deg/s; at most {MAX_HEAD_TURN_DEG_S} deg/s (lengthen the turn)",
+                            yaw_deg.abs().max(pitch_deg.abs())
+                        ),
+                    ));
+                }
+            }
+            Action::Wave {
+                amplitude,
+                frequency,
+                ..
+            } => {
+                let peak = std::f64::consts::TAU * frequency * amplitude.length();
+                if peak > MAX_WAVE_SPEED {
+                    return Err(err(
+                        format!("timeline[{i}].do.Wave.frequency"),
+                        format!(
+                            "peaks at {peak:.1} m/s (2 pi x frequency x amplitude); at most {MAX_WAVE_SPEED} m/s"
+                        ),
+                    ));
+                }
+            }
+            _ => {}
+        }
         if let Action::LookAt { until, .. } = e.action
             && until < e.at
         {
             return Err(err(
-                "until",
                 format!("timeline[{i}].do.LookAt.until"),
                 format!("must not precede `at` ({}), got {until}", e.at),
             ));
@@ -137,7 +182,6 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
             && !targets.contains(&target.as_str())
         {
             return Err(err(
-                &format!("\"{target}\""),
                 format!("expect[{i}].target"),
                 format!(
                     "no gaze target named `{target}` (bodies, `point`, the VH's segments){}",
@@ -145,6 +189,32 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
                 ),
             ));
         }
+    }
+    // Bounds given the wrong way round could never hold.
+    for (i, x) in scene.expect.iter().enumerate() {
+        if let Expect::HeadSpeed {
+            at_least, at_most, ..
+        }
+        | Expect::BlowMomentum {
+            at_least, at_most, ..
+        }
+        | Expect::Range {
+            at_least, at_most, ..
+        } = x
+            && at_most < at_least
+        {
+            return Err(err(
+                format!("expect[{i}].at_most"),
+                format!("must be at least at_least ({at_least}), got {at_most}"),
+            ));
+        }
+    }
+    let [rest, exertion] = scene.vh.effort.breathing;
+    if exertion < rest {
+        return Err(err(
+            "vh.effort.breathing".into(),
+            format!("the rate at exertion ({exertion}) must be at least the rate at rest ({rest})"),
+        ));
     }
     // Counts that bound nothing could never fail.
     for (i, x) in scene.expect.iter().enumerate() {
@@ -154,7 +224,6 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
             } => {
                 if at_most.is_some_and(|m| m < *at_least) {
                     return Err(err(
-                        "at_most",
                         format!("expect[{i}].at_most"),
                         format!("must be at least at_least ({at_least})"),
                     ));
@@ -167,7 +236,6 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
             } => {
                 if at_most < at_least {
                     return Err(err(
-                        "Fatigue(",
                         format!("expect[{i}].at_most"),
                         format!("must be at least at_least ({at_least})"),
                     ));
@@ -175,7 +243,6 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
                 // Fatigue is 0-1: [0, 1] bounds nothing.
                 if *at_least == 0.0 && *at_most >= 1.0 {
                     return Err(err(
-                        "Fatigue(",
                         format!("expect[{i}].at_most"),
                         "must be under 1, or at_least over 0: fatigue is 0-1, so as written \
                          it cannot fail"
@@ -187,13 +254,7 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
             _ => false,
         };
         if vacuous {
-            let needle = if matches!(x, Expect::Blows { .. }) {
-                "Blows("
-            } else {
-                "Blinks("
-            };
             return Err(err(
-                needle,
                 format!("expect[{i}].at_least"),
                 "must be at least 1 (or, for Blows, give at_most): as written it cannot fail"
                     .into(),
@@ -203,14 +264,21 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
     Ok(())
 }
 
+/// Fastest scripted head turn, deg/s: above a jab's snap of the head
+/// (9-21 rad/s, 500-1200 deg/s; scenes/jab_snaps_head.ron) and far above
+/// clinical head impulses (150-300 deg/s; Halmagyi & Curthoys 1988).
+pub const MAX_HEAD_TURN_DEG_S: f64 = 1500.0;
+
+/// Fastest scripted wave, m/s: twice an Olympic boxer's straight punch
+/// (9.1 +- 2.1 m/s; Walilko, Viano & Bir 2005).
+pub const MAX_WAVE_SPEED: f64 = 20.0;
+
 /// Longest run a scene may ask for, s of simulated time (a day; anything
 /// longer is a typo, not a bout).
 pub const MAX_DURATION: f64 = 86_400.0;
 
 /// What is wrong with a run length, and where.
 pub struct DurationError {
-    /// Text to find the line by.
-    pub needle: &'static str,
     /// The field.
     pub field: String,
     /// What is wrong.
@@ -223,23 +291,15 @@ pub struct DurationError {
 /// duration) every timeline event too. An override may cut the timeline
 /// short, but not a window it is judged by.
 pub fn check_duration(scene: &Scene, duration: f64, events: bool) -> Result<(), DurationError> {
-    let bad = |needle, field: String, message| {
-        Err(DurationError {
-            needle,
-            field,
-            message,
-        })
-    };
+    let bad = |field: String, message| Err(DurationError { field, message });
     if !duration.is_finite() || duration < DT {
         return bad(
-            "duration",
             "duration".into(),
             format!("must be at least one step ({DT} s), got {duration}"),
         );
     }
     if duration > MAX_DURATION {
         return bad(
-            "duration",
             "duration".into(),
             format!("must be at most {MAX_DURATION} s (a day), got {duration}"),
         );
@@ -247,7 +307,6 @@ pub fn check_duration(scene: &Scene, duration: f64, events: bool) -> Result<(), 
     for (i, e) in scene.timeline.iter().enumerate() {
         if events && e.at > duration {
             return bad(
-                "at",
                 format!("timeline[{i}].at"),
                 format!("{} s is after the end of the run ({duration} s)", e.at),
             );
@@ -259,7 +318,6 @@ pub fn check_duration(scene: &Scene, duration: f64, events: bool) -> Result<(), 
             && (to < from || to > duration + 1e-9)
         {
             return bad(
-                "expect",
                 format!("expect[{i}]"),
                 format!("window [{from}, {to}] must be ordered and inside the run (0, {duration})"),
             );

@@ -7,6 +7,7 @@
 //! against a cheek, a guard pushed aside slowly) are touches and count for
 //! nothing.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::physics::body::{OpponentPart, Seg};
@@ -27,7 +28,7 @@ pub const WINDOW: f64 = 0.03;
 const GAP: f64 = 0.02;
 
 /// Who threw a blow.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 pub enum Fighter {
     /// The virtual human.
     Vh,
@@ -46,7 +47,7 @@ impl Fighter {
 }
 
 /// Hit or block.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 pub enum BlowKind {
     /// The glove landed on the head or torso.
     Hit,

@@ -8,9 +8,8 @@
 //! Competition Rules 2019, rule 13: 3 x 3 min, 1 min between rounds).
 
 use glam::DVec3;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
-
-use shisen_gaze::util::check;
 
 /// The ring: half its side inside the ropes, m. AIBA rules ask 4.9-6.1 m
 /// square inside the ropes; 5.5 m here.
@@ -35,17 +34,20 @@ pub fn your_corner() -> DVec3 {
 }
 
 /// How a bout is timed (scene `bout`).
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct BoutParams {
-    /// Rounds, 1-15.
-    #[serde(deserialize_with = "rounds")]
+    /// Rounds, a whole number, 1-15 (default 3; professional title bouts
+    /// were 15 rounds until the 1980s, 12 since).
+    #[schemars(range(min = 1, max = 15))]
     pub rounds: u32,
-    /// Length of a round, s (5-600; short rounds for tests).
-    #[serde(deserialize_with = "round_length")]
+    /// Length of a round, s (default 180). 5-600: short rounds for tests,
+    /// up to 10 minutes (rules use 2-3).
+    #[schemars(range(min = 5.0, max = 600.0))]
     pub round: f64,
-    /// Rest between rounds, s (0-300).
-    #[serde(deserialize_with = "rest_length")]
+    /// Rest between rounds, s (default 60). 0-300: none to five minutes
+    /// (rules use one).
+    #[schemars(range(min = 0.0, max = 300.0))]
     pub rest: f64,
 }
 
@@ -57,22 +59,6 @@ impl Default for BoutParams {
             rest: 60.0,
         }
     }
-}
-
-/// A whole number of rounds, 1-15.
-fn rounds<'de, D: serde::Deserializer<'de>>(d: D) -> Result<u32, D::Error> {
-    let v = check::in_range(d, 1.0, 15.0)?;
-    if v.fract() != 0.0 {
-        return Err(serde::de::Error::custom(format!(
-            "must be a whole number of rounds, got {v}"
-        )));
-    }
-    Ok(v as u32)
-}
-
-shisen_gaze::ranged_fields! {
-    round_length: 5.0, 600.0;
-    rest_length: 0.0, 300.0;
 }
 
 /// Where a bout is.
@@ -183,7 +169,10 @@ mod tests {
 
     #[test]
     fn a_bout_reads_whole_rounds_in_range() {
-        let ok: BoutParams = ron::from_str("(rounds: 2, round: 60.0, rest: 0.0)").unwrap();
+        let read = |text: &str| {
+            shisen_gaze::util::ron::parse_ron::<BoutParams>(text, std::path::Path::new("b.ron"))
+        };
+        let ok = read("(rounds: 2, round: 60.0, rest: 0.0)").unwrap();
         assert_eq!((ok.rounds, ok.round, ok.rest), (2, 60.0, 0.0));
         for bad in [
             "(rounds: 2.5)",
@@ -193,7 +182,7 @@ mod tests {
             "(rest: -1.0)",
             "(bell: 1)",
         ] {
-            assert!(ron::from_str::<BoutParams>(bad).is_err(), "{bad}");
+            assert!(read(bad).is_err(), "{bad}");
         }
     }
 

@@ -14,6 +14,7 @@
 //! A head blow of `stagger_impulse` or more staggers the VH: it gives
 //! ground, and neither attacks nor defends, for `stagger_time`.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use shisen_face::emotion::AuLevels;
@@ -22,83 +23,98 @@ use shisen_gaze::behaviour::BehaviourParams;
 use shisen_gaze::oculomotor::OculomotorParams;
 
 /// How effort builds, recovers and shows (scene `vh.effort`).
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct EffortParams {
-    /// Whether effort is followed at all (`profile: Seed` turns it off).
+    /// Whether effort is followed at all (default true; `profile: Seed`
+    /// turns it off).
     pub on: bool,
     /// Stamina a punch thrown costs (of 1). Our choice: 0.004, so a pro's
     /// 55.6 punches a round (CompuBox averages, all weight classes) cost
     /// 0.22 of it, and three busy rounds with their rests leave a boxer
-    /// visibly tired.
-    #[serde(deserialize_with = "unit")]
+    /// visibly tired. 0-1: at most, one punch spends all of it.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub punch_cost: f64,
-    /// Stamina an evasion costs (of 1); our choice, half a punch's.
-    #[serde(deserialize_with = "unit")]
+    /// Stamina an evasion costs (of 1); our choice, half a punch's
+    /// (0.002). 0-1, as a punch's.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub evade_cost: f64,
     /// Stamina spent per second of a round by moving and holding the
-    /// guard, 1/s; our choice (0.1 over a 3-min round).
-    #[serde(deserialize_with = "rate")]
+    /// guard, 1/s; our choice (0.1 over a 3-min round). 0-0.1: at most
+    /// the whole of it in 10 s.
+    #[schemars(range(min = 0.0, max = 0.1))]
     pub round_drain: f64,
     /// Time constant of stamina's recovery in the rest, s. Oxygen uptake
     /// falls half way back in 0.64 min after a 3-min all-out effort
-    /// (a half time of 38 s, a time constant of 55 s).
-    #[serde(deserialize_with = "time_constant")]
+    /// (a half time of 38 s, a time constant of 55 s). 1-100000 s (from
+    /// a second to more than a day: no recovery).
+    #[schemars(range(min = 1.0, max = 100_000.0))]
     pub rest_recovery: f64,
     /// Time constant of stamina's recovery while fighting, s (slow: the
-    /// work goes on); our choice.
-    #[serde(deserialize_with = "time_constant")]
+    /// work goes on); our choice, 600 s. 1-100000 s, as at the rest.
+    #[schemars(range(min = 1.0, max = 100_000.0))]
     pub round_recovery: f64,
     /// Damage a blow to the head adds per N s of impulse (of 1); blows to
     /// the body count half. Our choice: ten clean 15 N s head shots (the
-    /// jab of scenes/jab_snaps_head.ron) give 0.45.
-    #[serde(deserialize_with = "unit")]
+    /// jab of scenes/jab_snaps_head.ron) give 0.45. 0-1 per N s: at most
+    /// one 1 N s touch does all the damage a bout can do.
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub damage_per_impulse: f64,
-    /// How much damage weighs in fatigue (E1), 0-2.
-    #[serde(deserialize_with = "weight")]
+    /// How much damage weighs in fatigue (E1), a factor (default 0.5).
+    /// 0-2: at 2, half the damage a bout can do exhausts the VH.
+    #[schemars(range(min = 0.0, max = 2.0))]
     pub damage_weight: f64,
     /// A head blow of at least this impulse staggers the VH, N s; our
-    /// choice, above the 10-21 N s of a clean jab.
-    #[serde(deserialize_with = "impulse")]
+    /// choice, 18, above the 10-21 N s of a clean jab. 1-1000 N s: 1000
+    /// is far beyond any punch (in effect, never staggered).
+    #[schemars(range(min = 1.0, max = 1000.0))]
     pub stagger_impulse: f64,
-    /// How long a stagger lasts, s (0.2-5).
-    #[serde(deserialize_with = "stagger_time")]
+    /// How long a stagger lasts, s (default 1.2). 0.2-5: from a stumble
+    /// to a count's worth of wobbling.
+    #[schemars(range(min = 0.2, max = 5.0))]
     pub stagger_time: f64,
     /// E2 at full fatigue: the attack rate falls by this share. De La
     /// Hoya's output fell from over 100 punches in a first round to 54 in
     /// rounds 7-12 (CompuBox, reported by BoxingScene): about half; 0.4.
-    #[serde(deserialize_with = "unit")]
+    /// A share, 0-1 (1: an exhausted VH does not attack).
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub attack_rate_drop: f64,
     /// E2: punches take this share longer. Punch force fell significantly
     /// after simulated bouts (Dunn et al. 2022, Eur. J. Sport Sci.
-    /// 22:964), with no figure in the abstract; our 0.12.
-    #[serde(deserialize_with = "unit")]
+    /// 22:964), with no figure in the abstract; our 0.12. A share, 0-1
+    /// (1: twice as long).
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub punch_slowing: f64,
     /// E2: the guard's gloves sit this much lower, m. Guard drops grew
     /// from round 1 to 2 in elite bouts (Dunn et al. 2017, PLoS ONE
-    /// 12:e0188675); our 0.06 m (a glove's height off the chin).
-    #[serde(deserialize_with = "guard_drop")]
+    /// 12:e0188675); our 0.06 m (a glove's height off the chin). 0-0.3 m:
+    /// from the chin to the chest.
+    #[schemars(range(min = 0.0, max = 0.3))]
     pub guard_drop: f64,
     /// E2: guard and evasion reactions lengthen by this share: choice
     /// reaction time rose 9.5 % after high-intensity exercise (395.8 to
-    /// 433.5 ms; Smith et al. 2016, J. Hum. Kinet. 51:27).
-    #[serde(deserialize_with = "unit")]
+    /// 433.5 ms; Smith et al. 2016, J. Hum. Kinet. 51:27). A share, 0-1
+    /// (1: twice as long).
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub reaction_rise: f64,
     /// E2: saccades' peak velocity falls by this share: 8 % after 3 h of
     /// exhausting cycling (Connell et al. 2016, Sci. Rep. 6:26614; 8 +- 11
     /// % for prosaccades, Connell et al. 2017, Sci. Rep. 7:42726), as it
     /// does with time on task (Di Stasi et al. 2013, Neurosci. Biobehav.
-    /// Rev. 37:968). At most 0.5.
-    #[serde(deserialize_with = "half")]
+    /// Rev. 37:968). A share, 0-0.5: at most half as fast.
+    #[schemars(range(min = 0.0, max = 0.5))]
     pub saccade_slowing: f64,
     /// E2: saccade latency lengthens by this share. Exercise fatigue left
     /// latency unchanged (Connell et al. 2013, poster; 2017) where sleep
-    /// loss lengthens it (De Gennaro et al. 2000); default 0.
-    #[serde(deserialize_with = "unit")]
+    /// loss lengthens it (De Gennaro et al. 2000); default 0. A share,
+    /// 0-1 (1: twice as long).
+    #[schemars(range(min = 0.0, max = 1.0))]
     pub saccade_latency_rise: f64,
     /// E3: breaths a minute at rest and at full exertion: 12-20 at rest,
     /// 40-60 at maximal exercise (Nicolò et al. 2017, Front. Physiol.
     /// 8:922, a review of respiratory frequency in exercise); 15 and 45.
+    /// Each 0-100 breaths a minute (past the fastest panting).
+    #[schemars(inner(range(min = 0.0, max = 100.0)))]
     pub breathing: [f64; 2],
 }
 
@@ -124,17 +140,6 @@ impl Default for EffortParams {
             breathing: [15.0, 45.0],
         }
     }
-}
-
-shisen_gaze::ranged_fields! {
-    unit: 0.0, 1.0;
-    half: 0.0, 0.5;
-    rate: 0.0, 0.1;
-    time_constant: 1.0, 100_000.0;
-    weight: 0.0, 2.0;
-    impulse: 1.0, 1000.0;
-    stagger_time: 0.2, 5.0;
-    guard_drop: 0.0, 0.3;
 }
 
 /// What happened this tick that costs or hurts.

@@ -12,6 +12,7 @@
 use std::sync::Arc;
 
 use glam::DVec3;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::bout::BoutParams;
@@ -58,7 +59,7 @@ pub struct Params {
 
 /// Which defaults the VH's timing and perception follow (scene
 /// `vh.profile`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 pub enum Profile {
     /// Human reaction times, pursuit limits, onset capture and blinking,
     /// each default citing its human source (docs/model/gaze.md "Human
@@ -166,59 +167,54 @@ impl Model {
 }
 
 /// Shape of a prop.
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
 pub enum PropShape {
-    /// Sphere of this radius, m (1 mm to 5 m).
-    Ball(#[serde(deserialize_with = "prop_size")] f64),
-    /// Box with half extents, m (each 1 mm to 5 m).
-    Box(#[serde(deserialize_with = "prop_half_extents")] DVec3),
+    /// Sphere of this radius, m. 0.001-5: from a bead to a wall, not a
+    /// planet.
+    Ball(#[schemars(range(min = 0.001, max = 5.0))] f64),
+    /// Box with these half extents `(x, y, z)`, m; each 0.001-5, as a
+    /// ball's radius.
+    Box(#[schemars(with = "[f64; 3]", inner(range(min = 0.001, max = 5.0)))] DVec3),
 }
 
-/// A prop declared by the scene.
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+/// A prop declared by the scene: a ball or a box, moved by the timeline
+/// (`kinematic`) or by the physics.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BodySpec {
-    /// Unique name.
+    /// Unique name (not an opponent part's, not `point` or
+    /// `opponent_body`, not starting with `vh_`).
     pub name: String,
     /// Shape.
     pub shape: PropShape,
-    /// Initial position, world metres.
-    #[serde(deserialize_with = "shisen_gaze::util::check::position")]
+    /// Initial position `(x, y, z)`, world m; each coordinate within +-100 m
+    /// of the origin (the room is a few metres across).
+    #[schemars(with = "[f64; 3]", inner(range(min = -100.0, max = 100.0)))]
     pub position: DVec3,
-    /// Initial velocity (dynamic props), m/s.
-    #[serde(default, deserialize_with = "shisen_gaze::util::check::vec3")]
+    /// Initial velocity `(x, y, z)` of a dynamic prop, m/s (default 0).
+    /// Each within +-50 m/s: the fastest thrown balls (a pitched baseball)
+    /// reach about 45 m/s.
+    #[serde(default)]
+    #[schemars(with = "[f64; 3]", inner(range(min = -50.0, max = 50.0)))]
     pub velocity: DVec3,
-    /// Initial angular velocity (dynamic props), rad/s.
-    #[serde(default, deserialize_with = "shisen_gaze::util::check::vec3")]
+    /// Initial angular velocity `(x, y, z)` of a dynamic prop, rad/s
+    /// (default 0). Each within +-500 rad/s: a pitched ball spins at up
+    /// to about 300 rad/s (2900 rpm).
+    #[serde(default)]
+    #[schemars(with = "[f64; 3]", inner(range(min = -500.0, max = 500.0)))]
     pub angular_velocity: DVec3,
-    /// Mass, kg.
-    #[serde(
-        default = "default_mass",
-        deserialize_with = "shisen_gaze::util::check::positive"
-    )]
+    /// Mass, kg (default 0.5). 0.001-200: from a 1 g bead to about twice a
+    /// heavy bag (30-70 kg) or a heavyweight boxer.
+    #[serde(default = "default_mass")]
+    #[schemars(range(min = 0.001, max = 200.0))]
     pub mass: f64,
-    /// Scripted (moved by `Move`/`Wave`) rather than simulated.
+    /// Scripted (moved by `Move`, `Wave`, `Orbit`) rather than simulated
+    /// (default false).
     #[serde(default)]
     pub kinematic: bool,
-    /// Whether gravity acts on a dynamic prop.
+    /// Whether gravity acts on a dynamic prop (default true).
     #[serde(default = "yes")]
     pub gravity: bool,
-}
-
-/// A prop's size, m: from a marble to a wall, not a planet.
-fn prop_size<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    shisen_gaze::util::check::in_range(d, 0.001, 5.0)
-}
-
-fn prop_half_extents<'de, D: serde::Deserializer<'de>>(d: D) -> Result<DVec3, D::Error> {
-    use serde::de::Error;
-    let v = shisen_gaze::util::check::vec3(d)?;
-    if v.min_element() < 0.001 || v.max_element() > 5.0 {
-        return Err(D::Error::custom(format!(
-            "half extents must be in [0.001, 5] m, got {v}"
-        )));
-    }
-    Ok(v)
 }
 
 fn default_mass() -> f64 {

@@ -5,6 +5,7 @@
 use std::path::PathBuf;
 
 use glam::{DVec2, DVec3};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::track::Track;
@@ -16,7 +17,7 @@ use shisen_gaze::util::math::{min_jerk, min_jerk_d, min_jerk_dd};
 use shisen_gaze::vision::BodyId;
 
 /// The opponent's hands.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 pub enum Hand {
     /// The opponent's left glove ("left_glove").
     Left,
@@ -25,20 +26,20 @@ pub enum Hand {
 }
 
 /// A script-movable body: an opponent part or a kinematic prop.
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
 pub enum Part {
-    /// Opponent's head.
+    /// The opponent's head.
     Head,
-    /// Opponent's left glove.
+    /// The opponent's left glove.
     LeftGlove,
-    /// Opponent's right glove.
+    /// The opponent's right glove.
     RightGlove,
-    /// A kinematic prop declared in `bodies`.
+    /// A kinematic prop declared in `bodies`, by name (`Body("ball")`).
     Body(String),
 }
 
 /// The VH's left or right (eyes).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize, JsonSchema)]
 pub enum Side {
     /// The VH's left.
     Left,
@@ -47,73 +48,94 @@ pub enum Side {
 }
 
 /// Where an opponent punch is aimed.
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
 pub enum PunchTarget {
     /// The VH's head (where it is when the punch starts).
     Head,
-    /// The VH's torso.
+    /// The VH's torso (where it is when the punch starts).
     Body,
-    /// A world point.
-    Point(#[serde(deserialize_with = "shisen_gaze::util::check::position")] DVec3),
+    /// A world point `(x, y, z)`, m; each coordinate within +-100 m of
+    /// the origin (the room is a few metres across).
+    Point(#[schemars(with = "[f64; 3]", inner(range(min = -100.0, max = 100.0)))] DVec3),
 }
 
 /// Something that happens at a time in the scene.
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+///
+/// Durations and times are bounded by the longest run (a day, 86400 s);
+/// the lower bounds of durations and the bounds of speeds, frequencies and
+/// angles are what a person's hand and neck, or a prop in a boxing ring,
+/// can do.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
 pub enum Action {
-    /// Move a part to a point along a minimum-jerk path.
+    /// Move a part (the opponent's head or a glove, or a kinematic prop)
+    /// from where it is to a point along a minimum-jerk path, arriving at
+    /// rest after `duration`.
     Move {
         /// What moves.
         part: Part,
-        /// Destination, world metres.
-        #[serde(deserialize_with = "shisen_gaze::util::check::position")]
+        /// Destination `(x, y, z)`, world m; each coordinate within +-100 m.
+        #[schemars(with = "[f64; 3]", inner(range(min = -100.0, max = 100.0)))]
         to: DVec3,
-        /// Duration, seconds.
-        #[serde(deserialize_with = "shisen_gaze::util::check::positive")]
+        /// Duration of the move, s. At least 0.05 s: a minimum-jerk path
+        /// peaks at 1.875 times its mean speed, so half a metre in 0.05 s
+        /// already peaks near 19 m/s, twice the fastest punches' 9-10 m/s;
+        /// shorter moves would be teleports. At most a day.
+        #[schemars(range(min = 0.05, max = 86_400.0))]
         duration: f64,
     },
-    /// Throw a punch at the VH and bring the glove back.
+    /// Throw a punch with one of the opponent's gloves at the VH (its head,
+    /// its body or a point) along a minimum-jerk path at a peak speed, and
+    /// bring the glove back; the physics decides whether it lands.
     Punch {
         /// Which glove.
         hand: Hand,
         /// Aim.
         target: PunchTarget,
-        /// Peak glove speed, m/s.
-        #[serde(deserialize_with = "shisen_gaze::util::check::positive")]
+        /// Peak glove speed, m/s. 0.1-20: from a slow touch to twice the
+        /// fastest measured punches (Olympic boxers' hands reach 6-9 m/s;
+        /// Walilko, Viano & Bir 2005).
+        #[schemars(range(min = 0.1, max = 20.0))]
         speed: f64,
         /// How far behind the contact point the punch is aimed, m
-        /// (`Head` and `Body` targets; default [`FOLLOW_THROUGH`]): a
-        /// committed punch is thrown deeper and lands harder.
-        #[serde(
-            default,
-            deserialize_with = "shisen_gaze::util::check::opt_non_negative",
-            skip_serializing_if = "Option::is_none"
-        )]
+        /// (`Head` and `Body` targets; default 0.05, `FOLLOW_THROUGH`): a
+        /// committed punch is thrown deeper and lands harder. 0-0.5: half
+        /// an arm's length, deeper would aim through the far side of the head.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        #[schemars(range(min = 0.0, max = 0.5))]
         through: Option<f64>,
     },
-    /// Wave a part sinusoidally about its current position.
+    /// Wave a part (a glove, the head or a kinematic prop) sinusoidally
+    /// about its current position, along each axis by its amplitude, for
+    /// `duration`.
     Wave {
         /// What waves.
         part: Part,
-        /// Peak displacement along each axis, metres.
-        #[serde(deserialize_with = "shisen_gaze::util::check::position")]
+        /// Peak displacement along each axis `(x, y, z)`, m (the sign sets
+        /// the phase). Each within +-2 m: a glove swings at most an arm's
+        /// length (0.7 m) each way; a prop may sweep wider, but not beyond
+        /// the ring (5.5 m across).
+        #[schemars(with = "[f64; 3]", inner(range(min = -2.0, max = 2.0)))]
         amplitude: DVec3,
-        /// Frequency, Hz.
-        #[serde(deserialize_with = "shisen_gaze::util::check::positive")]
+        /// Frequency, Hz. 0.01-10: from a 100 s period to above the
+        /// fastest voluntary alternating hand movements (about 5-7 Hz) and
+        /// far above where smooth pursuit keeps up (its gain falls above
+        /// about 1 Hz; Barnes 1993).
+        #[schemars(range(min = 0.01, max = 10.0))]
         frequency: f64,
-        /// Duration, seconds.
-        #[serde(deserialize_with = "shisen_gaze::util::check::positive")]
+        /// Duration, s: one step (0.001 s) to a day.
+        #[schemars(range(min = 0.001, max = 86_400.0))]
         duration: f64,
     },
-    /// Change the facial expression (face.md 7): from the current values to
-    /// `emotion` at `intensity`, over the table 5.9/5.10 duration at `speed`.
+    /// Change the VH's facial expression (face.md 7): from the current
+    /// values to `emotion` at `intensity`, over the table 5.9/5.10 duration
+    /// at `speed`.
     Emotion {
         /// One of the 35 emotions of table A (`Neutral`, `Happiness`, ...).
         emotion: shisen_face::tables::Emotion,
-        /// Intensity, 0-1.
-        #[serde(
-            default = "one",
-            deserialize_with = "shisen_gaze::util::check::unit_interval"
-        )]
+        /// Intensity, 0 (none) to 1 (full; default).
+        #[serde(default = "one")]
+        #[schemars(range(min = 0.0, max = 1.0))]
         intensity: f64,
         /// `Fast`, `Typical` or `Slow` (the thesis's speeds 1, 2, 3).
         #[serde(default)]
@@ -122,92 +144,118 @@ pub enum Action {
         #[serde(default)]
         pattern: shisen_face::timing::Pattern,
     },
-    /// Play a script in the thesis's plain format (`emotion duration
-    /// speed` per line, face.md 9) from this time; the file is relative to
-    /// the scene and is expanded into `Emotion` events when the scene loads.
+    /// Play a script of expressions in the thesis's plain format (`emotion
+    /// duration speed` per line, face.md 9) from this time; the file is
+    /// expanded into `Emotion` events when the scene loads.
     EmotionScript {
-        /// The script file.
+        /// The script file, relative to the scene file.
         file: PathBuf,
     },
-    /// Override the gaze: look at a world point until a time.
+    /// Override the VH's gaze: look at a world point until a time (the
+    /// action planner's choice of target resumes after it).
     LookAt {
-        /// The point, world metres.
-        #[serde(deserialize_with = "shisen_gaze::util::check::position")]
+        /// The point `(x, y, z)`, world m; each coordinate within +-100 m.
+        #[schemars(with = "[f64; 3]", inner(range(min = -100.0, max = 100.0)))]
         point: DVec3,
-        /// End of the override, seconds.
-        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        /// End of the override, s from the run's start (not before `at`;
+        /// at most a day).
+        #[schemars(range(min = 0.0, max = 86_400.0))]
         until: f64,
-        /// Attention amount A for the head law (M8); default the
+        /// Attention amount A for the head law (M8), 0-100 like the
+        /// personality's amounts (the seed's are 1.5 and 3); default the
         /// personality's `a2` (the head faces the point).
-        #[serde(
-            default,
-            deserialize_with = "shisen_gaze::util::check::opt_non_negative",
-            skip_serializing_if = "Option::is_none"
-        )]
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        #[schemars(range(min = 0.0, max = 100.0))]
         amount: Option<f64>,
         /// How to shift the gaze there (default: the scene's law).
         #[serde(default)]
         style: Option<shisen_gaze::oculomotor::GazeShiftLaw>,
     },
-    /// Override the gaze: follow a body (by name) until a time.
+    /// Override the VH's gaze: follow a body (by name) until a time.
     Track {
-        /// Body name (`head`, `left_glove`, a prop...).
+        /// Body name (`head`, `left_glove`, `right_glove`, a prop of
+        /// `bodies`).
         body: String,
-        /// End of the override, seconds.
-        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        /// End of the override, s from the run's start (not before `at`;
+        /// at most a day).
+        #[schemars(range(min = 0.0, max = 86_400.0))]
         until: f64,
     },
-    /// Move a part at constant angular speed on a horizontal circle about
-    /// a centre (a pursuit target).
+    /// Move a part (the opponent's head or a glove, or a kinematic prop)
+    /// at constant angular speed on a horizontal circle about a centre,
+    /// from where it is (a pursuit target, an opponent circling).
     Orbit {
         /// What moves.
         part: Part,
-        /// Centre of the circle, world metres.
-        #[serde(deserialize_with = "shisen_gaze::util::check::position")]
+        /// Centre of the circle `(x, y, z)`, world m; each coordinate
+        /// within +-100 m.
+        #[schemars(with = "[f64; 3]", inner(range(min = -100.0, max = 100.0)))]
         centre: DVec3,
-        /// Angular speed about +Y (positive: toward the VH's left), deg/s.
-        #[serde(deserialize_with = "shisen_gaze::util::check::finite")]
+        /// Angular speed about +Y, deg/s (positive: toward the VH's left).
+        /// -720 to 720 (two turns a second): far past what smooth pursuit
+        /// follows (about 100 deg/s) or a fighter circles.
+        #[schemars(range(min = -720.0, max = 720.0))]
         rate_deg: f64,
-        /// Duration, seconds.
-        #[serde(deserialize_with = "shisen_gaze::util::check::positive")]
+        /// Duration, s: one step (0.001 s) to a day.
+        #[schemars(range(min = 0.001, max = 86_400.0))]
         duration: f64,
     },
-    /// Shut or cover one eye (`Some(Left)`, `Some(Right)`) or none (`None`).
+    /// Shut or cover one of the VH's eyes (`Some(Left)`, `Some(Right)`) or
+    /// uncover both (`None`), from this time on.
     Occlude {
-        /// The covered eye.
+        /// The covered eye, or `None`.
         eye: Option<Side>,
     },
-    /// Impose a sinusoidal neck motion (overriding the head law), e.g. to
-    /// measure the VOR: yaw and pitch amplitudes in degrees.
+    /// Impose a sinusoidal neck motion on the VH (overriding the head
+    /// law) for `duration`, e.g. to measure the VOR: yaw and pitch
+    /// oscillate about straight ahead at `frequency`.
     ShakeHead {
-        /// Yaw amplitude, deg.
-        #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+        /// Yaw amplitude, deg. 0-90: the neck turns 70-80 deg each way
+        /// (active cervical rotation; Youdas et al. 1992, Phys. Ther.
+        /// 72:770).
+        #[schemars(range(min = 0.0, max = 90.0))]
         yaw_deg: f64,
-        /// Pitch amplitude, deg.
-        #[serde(default, deserialize_with = "shisen_gaze::util::check::non_negative")]
+        /// Pitch amplitude, deg (default 0). 0-90: the neck bends about
+        /// 50-60 deg forward and 60-80 back (Youdas et al. 1992).
+        #[serde(default)]
+        #[schemars(range(min = 0.0, max = 90.0))]
         pitch_deg: f64,
-        /// Frequency, Hz.
-        #[serde(deserialize_with = "shisen_gaze::util::check::positive")]
+        /// Frequency, Hz. 0.01-6: active head rotation tests run to 6 Hz,
+        /// about the fastest a person shakes the head (O'Leary &
+        /// Davis-O'Leary 1990).
+        #[schemars(range(min = 0.01, max = 6.0))]
         frequency: f64,
-        /// Duration, s.
-        #[serde(deserialize_with = "shisen_gaze::util::check::positive")]
+        /// Duration, s: one step (0.001 s) to a day.
+        #[schemars(range(min = 0.001, max = 86_400.0))]
         duration: f64,
     },
-    /// Impose a quick minimum-jerk neck turn by `yaw_deg` / `pitch_deg`
-    /// over `duration` s and hold it for `hold` s (overriding the head law):
-    /// a passive head impulse, e.g. to measure the VOR's latency.
+    /// Impose a quick minimum-jerk neck turn on the VH by `yaw_deg` /
+    /// `pitch_deg` over `duration` and hold it for `hold` (overriding the
+    /// head law): a passive head impulse, e.g. to measure the VOR's
+    /// latency.
     TurnHead {
-        /// Yaw, deg (positive: to the VH's left).
-        #[serde(deserialize_with = "shisen_gaze::util::check::finite")]
+        /// Yaw, deg (positive: to the VH's left). -90 to 90: the neck
+        /// turns 70-80 deg each way (Youdas et al. 1992, Phys. Ther.
+        /// 72:770).
+        #[schemars(range(min = -90.0, max = 90.0))]
         yaw_deg: f64,
-        /// Pitch, deg (positive: up).
-        #[serde(default, deserialize_with = "shisen_gaze::util::check::finite")]
+        /// Pitch, deg (positive: up; default 0). -90 to 90: the neck
+        /// bends about 50-60 deg forward and 60-80 back (Youdas et al.
+        /// 1992).
+        #[serde(default)]
+        #[schemars(range(min = -90.0, max = 90.0))]
         pitch_deg: f64,
-        /// Duration of the turn, s.
-        #[serde(deserialize_with = "shisen_gaze::util::check::positive")]
+        /// Duration of the turn, s. At least 0.05 s: a clinical head
+        /// impulse turns 10-20 deg in 100-200 ms (peaks 150-300 deg/s);
+        /// 90 deg in 0.05 s already peaks near 3400 deg/s (59 rad/s),
+        /// several times a jab's snap of the head (9-21 rad/s,
+        /// scenes/jab_snaps_head.ron). At most a day.
+        #[schemars(range(min = 0.05, max = 86_400.0))]
         duration: f64,
-        /// How long the turned head is held afterwards, s.
-        #[serde(default, deserialize_with = "shisen_gaze::util::check::non_negative")]
+        /// How long the turned head is held afterwards, s (default 0; at
+        /// most a day).
+        #[serde(default)]
+        #[schemars(range(min = 0.0, max = 86_400.0))]
         hold: f64,
     },
 }
@@ -221,12 +269,13 @@ pub enum Action {
 /// that has met it.
 pub const FOLLOW_THROUGH: f64 = 0.05;
 
-/// A timeline entry.
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+/// A timeline entry: at a time, an action.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Event {
-    /// Start time, seconds.
-    #[serde(deserialize_with = "shisen_gaze::util::check::non_negative")]
+    /// Start time, s from the run's start: 0 to a day (86400 s), and not
+    /// after the run's `duration`.
+    #[schemars(range(min = 0.0, max = 86_400.0))]
     pub at: f64,
     /// What happens.
     #[serde(rename = "do")]

@@ -107,6 +107,14 @@ pub fn run_scenes(
     let runs = parallel::pool(jobs).install(|| {
         mine.par_iter()
             .map(|f| {
+                if super::stop_requested() {
+                    return SceneRun {
+                        path: f.to_path_buf(),
+                        name: stem_of(f),
+                        outcome: Err(INTERRUPTED.into()),
+                        wall: 0.0,
+                    };
+                }
                 let r = run_one(f, out);
                 bar.inc(1);
                 bar.set_message(r.name.clone());
@@ -118,11 +126,32 @@ pub fn run_scenes(
     runs
 }
 
+/// The outcome of a scene a stop request (Ctrl-C) cut short or kept from
+/// starting.
+pub const INTERRUPTED: &str = "interrupted (Ctrl-C)";
+
+/// A scene file's name without its folder and extension: its output's
+/// name under `test --out`.
+pub fn stem_of(path: &Path) -> String {
+    path.file_stem()
+        .map_or("scene".into(), |s| s.to_string_lossy().into_owned())
+}
+
+/// Scene files whose outputs (`NAME.csv`, `NAME.png`) would be one file
+/// in an output folder: the first such pair.
+pub fn colliding_outputs(files: &[PathBuf]) -> Option<(&PathBuf, &PathBuf)> {
+    let mut seen: std::collections::HashMap<String, &PathBuf> = Default::default();
+    for f in files {
+        if let Some(first) = seen.insert(stem_of(f).to_lowercase(), f) {
+            return Some((first, f));
+        }
+    }
+    None
+}
+
 fn run_one(path: &Path, out: Option<&Path>) -> SceneRun {
     let wall = Instant::now();
-    let stem = path
-        .file_stem()
-        .map_or("scene".into(), |s| s.to_string_lossy().into_owned());
+    let stem = stem_of(path);
     let loaded = match LoadedScene::load(path) {
         Ok(l) => l,
         Err(e) => {
@@ -137,7 +166,14 @@ fn run_one(path: &Path, out: Option<&Path>) -> SceneRun {
     let outcome = match out {
         None => headless::run(&loaded, None, None, 1).map_err(|e| e.to_string()),
         Some(dir) => run_kept(&loaded, &dir.join(format!("{stem}.csv"))),
-    };
+    }
+    .and_then(|r| {
+        if r.interrupted {
+            Err(INTERRUPTED.into())
+        } else {
+            Ok(r)
+        }
+    });
     SceneRun {
         path: path.to_path_buf(),
         name: loaded.scene.name.clone(),
@@ -149,17 +185,29 @@ fn run_one(path: &Path, out: Option<&Path>) -> SceneRun {
 /// A run whose trace is kept at `csv`, with its plot beside it.
 fn run_kept(loaded: &LoadedScene, csv: &Path) -> Result<Report, String> {
     let err = |e: &dyn std::fmt::Display| format!("{}: {e}", csv.display());
-    let file = std::fs::File::create(csv).map_err(|e| err(&e))?;
-    let mut w = BufWriter::new(file);
-    let report = headless::run(loaded, None, Some(&mut w), 1).map_err(|e| err(&e))?;
-    drop(w);
-    crate::tools::plot::plot_trace(csv, &csv.with_extension("png"), (1400, 900))
+    // Written beside and renamed into place when whole.
+    let dir = csv.parent().unwrap_or(Path::new("."));
+    let tmp = tempfile::Builder::new()
+        .prefix(".shisen-")
+        .suffix(".tmp")
+        .tempfile_in(dir)
         .map_err(|e| err(&e))?;
+    let mut w = BufWriter::new(tmp);
+    let report = headless::run(loaded, None, Some(&mut w), 1).map_err(|e| err(&e))?;
+    let tmp = w.into_inner().map_err(|e| err(&e.into_error()))?;
+    tmp.persist(csv).map_err(|e| err(&e.error))?;
+    if !report.interrupted {
+        crate::tools::plot::plot_trace(csv, &csv.with_extension("png"), (1400, 900))
+            .map_err(|e| err(&e))?;
+    }
     Ok(report)
 }
 
 /// The JUnit XML report of `runs` (see the module docs for the schema).
-pub fn junit(runs: &[SceneRun]) -> String {
+///
+/// A comment before the root names the job, `<!-- shisen test: scenes=S
+/// shard=I/N -->` (S scene files in the whole job), for [`merge_junit`].
+pub fn junit(runs: &[SceneRun], scenes: usize, shard: Shard) -> String {
     let mut suites = String::new();
     let (mut tests, mut failures, mut errors, mut time) = (0, 0, 0, 0.0);
     for r in runs {
@@ -177,7 +225,7 @@ pub fn junit(runs: &[SceneRun]) -> String {
         }
     }
     format!(
-        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"shisen\" tests=\"{tests}\" failures=\"{failures}\" errors=\"{errors}\" time=\"{time:.3}\">\n{suites}</testsuites>\n"
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<!-- shisen test: scenes={scenes} shard={shard} -->\n<testsuites name=\"shisen\" tests=\"{tests}\" failures=\"{failures}\" errors=\"{errors}\" time=\"{time:.3}\">\n{suites}</testsuites>\n"
     )
 }
 
@@ -228,7 +276,35 @@ fn junit_suite(r: &SceneRun) -> String {
 pub fn merge_junit(reports: &[String]) -> Result<String, String> {
     let (mut tests, mut failures, mut errors, mut time) = (0u64, 0u64, 0u64, 0.0f64);
     let mut suites = String::new();
+    // The job (scene count and shard count) and which input has each shard.
+    let mut job: Option<(usize, usize)> = None;
+    let mut seen: Vec<Option<usize>> = Vec::new();
     for (k, text) in reports.iter().enumerate() {
+        let (scenes, shard) = junit_job(text)
+            .ok_or_else(|| format!("input {}: no `<!-- shisen test: scenes=S shard=I/N -->` line (not a shisen report, or an old one)", k + 1))?;
+        match job {
+            None => {
+                job = Some((scenes, shard.count));
+                seen = vec![None; shard.count];
+            }
+            Some(j) if j != (scenes, shard.count) => {
+                return Err(format!(
+                    "input {}: a job of {scenes} scenes in {} shards, not {} in {}",
+                    k + 1,
+                    shard.count,
+                    j.0,
+                    j.1
+                ));
+            }
+            Some(_) => {}
+        }
+        if let Some(other) = seen[shard.index].replace(k) {
+            return Err(format!(
+                "inputs {} and {} are both shard {shard}; each shard is merged once",
+                other + 1,
+                k + 1
+            ));
+        }
         let open = text
             .find("<testsuites ")
             .ok_or_else(|| format!("input {}: not a shisen JUnit report", k + 1))?;
@@ -250,9 +326,30 @@ pub fn merge_junit(reports: &[String]) -> Result<String, String> {
             .ok_or("unterminated <testsuites>")?;
         suites.push_str(text[head_end + 1..close].trim_start_matches('\n'));
     }
+    let (scenes, count) = job.ok_or("nothing to merge")?;
+    let missing: Vec<String> = (0..count)
+        .filter(|&i| seen[i].is_none())
+        .map(|i| format!("{i}/{count}"))
+        .collect();
+    if !missing.is_empty() {
+        return Err(format!(
+            "the job has {count} shards; missing {}: merge every shard's report",
+            missing.join(", ")
+        ));
+    }
     Ok(format!(
-        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites name=\"shisen\" tests=\"{tests}\" failures=\"{failures}\" errors=\"{errors}\" time=\"{time:.3}\">\n{suites}</testsuites>\n"
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<!-- shisen test: scenes={scenes} shard=0/1 -->\n<testsuites name=\"shisen\" tests=\"{tests}\" failures=\"{failures}\" errors=\"{errors}\" time=\"{time:.3}\">\n{suites}</testsuites>\n"
     ))
+}
+
+/// The job a report's first comment names: scene count and shard.
+fn junit_job(text: &str) -> Option<(usize, Shard)> {
+    let line = text.lines().find(|l| l.starts_with("<!-- shisen test:"))?;
+    let word = |key: &str| {
+        line.split(' ')
+            .find_map(|w| w.strip_prefix(key)?.strip_prefix('='))
+    };
+    Some((word("scenes")?.parse().ok()?, word("shard")?.parse().ok()?))
 }
 
 /// Text escaped for an XML attribute.
@@ -310,8 +407,18 @@ mod tests {
             outcome: Err("x.ron:1:1: - : oops".into()),
             wall: 0.0,
         };
-        let a = junit(&[run("a", &[true, false])]);
-        let b = junit(&[run("b", &[true]), bad]);
+        let a = junit(&[run("a", &[true, false])], 3, "0/2".parse().unwrap());
+        let b = junit(&[run("b", &[true]), bad], 3, "1/2".parse().unwrap());
+        assert!(
+            merge_junit(std::slice::from_ref(&a))
+                .unwrap_err()
+                .contains("missing 1/2")
+        );
+        assert!(
+            merge_junit(&[a.clone(), a.clone()])
+                .unwrap_err()
+                .contains("both shard 0/2")
+        );
         assert!(a.contains("tests=\"2\" failures=\"1\" errors=\"0\""), "{a}");
         assert!(
             a.contains("&quot;head&quot;") && a.contains("12.5% &lt;"),

@@ -46,7 +46,8 @@ pub fn run(
 
 /// [`run`], calling `keep_going(t)` every simulated second; it returns
 /// false to stop the run there (Ctrl-C), with the trace written so far
-/// intact and the report marked interrupted.
+/// intact and the report marked interrupted. Every run also stops there
+/// once [`super::request_stop`] was called.
 pub fn run_watched(
     scene: &LoadedScene,
     duration: Option<f64>,
@@ -64,7 +65,7 @@ pub fn run_watched(
     let planned = (duration / DT).round() as u64;
     let (mut ticks, mut interrupted) = (planned, false);
     for k in 0..planned {
-        if k % 1000 == 0 && k > 0 && !keep_going(sim.time()) {
+        if k % 1000 == 0 && k > 0 && (super::stop_requested() || !keep_going(sim.time())) {
             (ticks, interrupted) = (k, true);
             break;
         }

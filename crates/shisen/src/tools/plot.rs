@@ -259,8 +259,9 @@ impl TraceTable {
 /// Plot a trace: gaze, eye and head yaw and pitch against time, the
 /// line-of-sight error, and the gaze-target switches marked.
 pub fn plot_trace(trace: &Path, out: &Path, size: (u32, u32)) -> Result<()> {
-    let text = std::fs::read_to_string(trace)
-        .with_context(|| format!("cannot read trace {}", trace.display()))?;
+    // A trace is data, up to an hour of ticks: 2 GiB at most.
+    let text = shisen_gaze::util::ron::read_text_up_to(trace, 2 << 30)
+        .with_context(|| format!("cannot read the trace"))?;
     let tt = TraceTable::parse(&text, &trace.display().to_string())?;
     let t = tt.column("t")?;
     let zip = |a: &[f64]| t.iter().copied().zip(a.iter().copied()).collect::<Vec<_>>();

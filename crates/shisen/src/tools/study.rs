@@ -30,6 +30,7 @@
 use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
@@ -39,13 +40,15 @@ use crate::tools::{headless, parallel};
 use shisen_gaze::util::ron::{LoadError, parse_ron, read_text};
 
 /// A study file.
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Study {
     /// The base scene, relative to the study file.
     pub scene: PathBuf,
-    /// The fields to vary.
+    /// The fields to vary, at most 1000 (far more than a study varies:
+    /// each is tried on a copy of the scene when the study loads).
     #[serde(default)]
+    #[schemars(length(max = 1000))]
     pub vary: Vec<Vary>,
     /// The seeds (default: the scene's own).
     #[serde(default)]
@@ -53,13 +56,16 @@ pub struct Study {
 }
 
 /// One varied field.
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Vary {
     /// Dotted path of the field in the scene (`vh.personality.a_face`).
     pub field: String,
-    /// Its values...
+    /// Its values, in the field's unit: each within +-1e9 (finite and
+    /// sane; each run's scene is checked against the field's own range),
+    /// at most [`MAX_RUNS`] of them...
     #[serde(default)]
+    #[schemars(length(max = MAX_RUNS), inner(range(min = -1e9, max = 1e9)))]
     pub values: Vec<f64>,
     /// ... or an evenly spaced range.
     #[serde(default)]
@@ -67,36 +73,52 @@ pub struct Vary {
 }
 
 /// `steps` evenly spaced values from `from` to `to` inclusive.
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Range {
-    /// First value.
-    #[serde(deserialize_with = "shisen_gaze::util::check::finite")]
+    /// First value, in the field's unit, within +-1e9 (each run's scene
+    /// is checked against the field's own range).
+    #[schemars(range(min = -1e9, max = 1e9))]
     pub from: f64,
-    /// Last value.
-    #[serde(deserialize_with = "shisen_gaze::util::check::finite")]
+    /// Last value, likewise within +-1e9.
+    #[schemars(range(min = -1e9, max = 1e9))]
     pub to: f64,
-    /// Number of values (at least 2).
+    /// Number of values, 2 to [`MAX_RUNS`] (the values are made before
+    /// the study's runs are counted).
+    #[schemars(range(min = 2, max = MAX_RUNS))]
     pub steps: usize,
 }
 
 /// The seeds of a study.
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
 pub enum Seeds {
-    /// These seeds.
-    List(Vec<u64>),
+    /// These seeds: 1 to [`MAX_RUNS`] of them, each any 64-bit seed.
+    List(
+        #[schemars(length(min = 1, max = MAX_RUNS), inner(range(min = 0, max = u64::MAX)))]
+        Vec<u64>,
+    ),
     /// Every seed from `from` to `to` inclusive.
     Range {
-        /// First seed.
+        /// First seed, 0 to 1000000 (a range's seeds are listed before the
+        /// study's runs are counted; name larger seeds in a `List`).
+        #[schemars(range(min = 0, max = MAX_RANGE_SEED))]
         from: u64,
-        /// Last seed.
+        /// Last seed, 0 to 1000000 (at least `from`).
+        #[schemars(range(min = 0, max = MAX_RANGE_SEED))]
         to: u64,
     },
 }
 
 /// Most runs a study may expand to (a typo such as `steps: 10000` in two
-/// fields should not start a hundred-million-run job).
-pub const MAX_RUNS: usize = 1_000_000;
+/// fields should not start a hundred-million-run job), and most values a
+/// varied field or a seed list may give: every run's scene is made and
+/// checked before the first starts.
+pub const MAX_RUNS: usize = 100_000;
+
+/// Largest seed a [`Seeds::Range`] may name: its seeds are listed before
+/// the runs are counted, so this keeps that list under 8 MB.
+pub const MAX_RANGE_SEED: u64 = 1_000_000;
 
 /// A study, loaded: its base scene and its runs.
 pub struct LoadedStudy {
@@ -111,9 +133,20 @@ pub struct LoadedStudy {
     /// A fingerprint of the study and scene text (a results file made from
     /// other text is not resumed).
     pub fingerprint: u64,
+    /// The study file's text (errors of a run point into it).
+    text: String,
 }
 
 impl LoadedStudy {
+    /// The base scene a study file names (resolved against its folder),
+    /// if the file reads as a study; for checking outputs against inputs
+    /// before anything runs.
+    pub fn base_path(path: &Path) -> Option<PathBuf> {
+        let text = read_text(path).ok()?;
+        let study: Study = parse_ron(&text, path).ok()?;
+        Some(path.parent().unwrap_or(Path::new(".")).join(study.scene))
+    }
+
     /// Load a study file and its base scene, and expand its runs.
     pub fn load(path: &Path) -> Result<LoadedStudy, LoadError> {
         let text = read_text(path)?;
@@ -123,7 +156,7 @@ impl LoadedStudy {
         let base = LoadedScene::load(&scene_path)?;
         let scene_text = read_text(&scene_path)?;
         let invalid = |field: String, message: String| {
-            let (line, col) = shisen_gaze::util::ron::line_of(&text, "vary");
+            let (line, col) = shisen_gaze::util::locate::locate(&text, &field);
             LoadError::Invalid {
                 file: path.display().to_string(),
                 line,
@@ -179,7 +212,19 @@ impl LoadedStudy {
         let seeds = match &study.seeds {
             None => vec![base.scene.seed],
             Some(Seeds::List(s)) if !s.is_empty() => s.clone(),
-            Some(Seeds::Range { from, to }) if from <= to => (*from..=*to).collect(),
+            // Counted before it is listed.
+            Some(Seeds::Range { from, to }) if from <= to && to - from < MAX_RUNS as u64 => {
+                (*from..=*to).collect()
+            }
+            Some(Seeds::Range { from, to }) if from <= to => {
+                return Err(invalid(
+                    "seeds".into(),
+                    format!(
+                        "{} seeds: more than the {MAX_RUNS} runs a study may have",
+                        to - from + 1
+                    ),
+                ));
+            }
             Some(_) => return Err(invalid("seeds".into(), "no seeds".into())),
         };
         let total = axes
@@ -212,6 +257,7 @@ impl LoadedStudy {
             runs,
             fingerprint: fnv(&[text.as_bytes(), scene_text.as_bytes()]),
             base,
+            text,
         })
     }
 
@@ -246,8 +292,10 @@ impl LoadedStudy {
         h
     }
 
-    /// The scene of run `k`, validated like a file.
-    pub fn scene(&self, k: usize) -> Result<LoadedScene, String> {
+    /// The scene of run `k`, validated like a file. An error names the
+    /// study file at the varied field it comes from (or its `scene`), the
+    /// run and its values, and the scene's field at fault.
+    pub fn scene(&self, k: usize) -> Result<LoadedScene, LoadError> {
         let (values, seed) = &self.runs[k];
         let fields: Vec<(&str, f64)> = self
             .fields
@@ -256,7 +304,30 @@ impl LoadedStudy {
             .zip(values.iter().copied())
             .collect();
         let label = format!("{} run {k}", self.file.display());
-        edit_scene(&self.base, &fields, Some(*seed), &label)
+        edit_scene(&self.base, &fields, Some(*seed), &label).map_err(|e| {
+            let (field, message) = match e {
+                LoadError::Invalid { field, message, .. } => (field, message),
+                LoadError::Io { reason, .. } => ("-".into(), reason.to_string()),
+            };
+            // The varied field the error is in, else the base scene.
+            let at = self
+                .fields
+                .iter()
+                .position(|f| field.starts_with(f.as_str()) || f.starts_with(field.as_str()))
+                .map_or("scene".to_string(), |i| format!("vary[{i}]"));
+            let (line, col) = shisen_gaze::util::locate::locate(&self.text, &at);
+            let values: Vec<String> = fields.iter().map(|(f, x)| format!("{f} = {x}")).collect();
+            LoadError::Invalid {
+                file: self.file.display().to_string(),
+                line,
+                col,
+                field: at,
+                message: format!(
+                    "run {k} ({}, seed {seed}): {field}: {message}",
+                    values.join(", ")
+                ),
+            }
+        })
     }
 
     /// Run this `shard` of the study on `jobs` threads into `results`
@@ -266,16 +337,23 @@ impl LoadedStudy {
         let todo: Vec<usize> = (0..self.runs.len())
             .filter(|&k| shard.contains(k) && !results.has(k))
             .collect();
-        // Every run's scene is checked before any simulation starts.
-        let scenes: Vec<LoadedScene> = todo
-            .iter()
-            .map(|&k| self.scene(k))
-            .collect::<Result<_, _>>()
-            .map_err(anyhow::Error::msg)?;
+        // Every run's scene is checked before any simulation starts (and
+        // made again when its run starts: a study's scenes are not all
+        // held at once).
+        for &k in &todo {
+            self.scene(k)?;
+        }
         let bar = parallel::bar(todo.len() as u64, "runs");
         parallel::pool(jobs).install(|| {
-            todo.par_iter().zip(&scenes).try_for_each(|(&k, scene)| {
-                let r = headless::run(scene, None, None, 1)?;
+            todo.par_iter().try_for_each(|&k| {
+                // Ctrl-C: no new run starts; one cut short is not written.
+                if super::stop_requested() {
+                    return Ok(());
+                }
+                let r = headless::run(&self.scene(k)?, None, None, 1)?;
+                if r.interrupted {
+                    return Ok(());
+                }
                 let (values, seed) = &self.runs[k];
                 let mut row = seed.to_string();
                 for x in values {
@@ -310,19 +388,26 @@ pub fn edit_scene(
     fields: &[(&str, f64)],
     seed: Option<u64>,
     label: &str,
-) -> Result<LoadedScene, String> {
+) -> Result<LoadedScene, LoadError> {
+    let invalid = |field: &str, message: String| LoadError::Invalid {
+        file: label.to_string(),
+        line: 1,
+        col: 1,
+        field: field.to_string(),
+        message,
+    };
     let mut scene = base.scene.clone();
     scene.gains = Some(base.gains.clone());
     scene.gains_file = None;
     let mut v = scene_value(&scene);
     for (f, x) in fields {
-        set_field(&mut v, f, *x).map_err(|e| format!("{label}: {e}"))?;
+        set_field(&mut v, f, *x).map_err(|e| invalid(f, e))?;
     }
-    let mut scene: Scene = serde_json::from_value(v).map_err(|e| format!("{label}: {e}"))?;
+    let mut scene: Scene = serde_json::from_value(v).map_err(|e| invalid("-", e.to_string()))?;
     if let Some(seed) = seed {
         scene.seed = seed;
     }
-    let scene = Scene::parse(&scene.to_ron(), Path::new(label)).map_err(|e| e.to_string())?;
+    let scene = Scene::parse(&scene.to_ron(), Path::new(label))?;
     Ok(LoadedScene {
         gains: scene.gains.clone().unwrap_or_else(|| base.gains.clone()),
         scene,

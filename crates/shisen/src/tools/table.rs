@@ -50,6 +50,17 @@ pub enum TableError {
     },
 }
 
+/// Largest results file read, bytes.
+const MAX_RESULTS_BYTES: u64 = 1 << 30;
+
+/// A results file's text (a regular file of at most [`MAX_RESULTS_BYTES`]).
+fn read(path: &Path) -> Result<String, TableError> {
+    shisen_gaze::util::ron::read_text_up_to(path, MAX_RESULTS_BYTES).map_err(|e| match e {
+        shisen_gaze::util::ron::LoadError::Io { reason, .. } => io(path)(reason),
+        other => io(path)(std::io::Error::other(other.to_string())),
+    })
+}
+
 fn io(file: &Path) -> impl FnOnce(std::io::Error) -> TableError + '_ {
     move |source| TableError::Io {
         file: file.display().to_string(),
@@ -120,7 +131,7 @@ impl ResultsFile {
         let mut done = BTreeMap::new();
         let exists = path.exists();
         if exists {
-            let text = std::fs::read_to_string(path).map_err(io(path))?;
+            let text = read(path)?;
             let (found, found_header, rows) = parse(path, &text)?;
             if found != settings || found_header != header {
                 return Err(TableError::Mismatch {
@@ -178,7 +189,7 @@ impl ResultsFile {
             ..
         } = self;
         drop(out.into_inner().expect("results file lock"));
-        let text = std::fs::read_to_string(&path).map_err(io(&path))?;
+        let text = read(&path)?;
         let (_, _, rows) = parse(&path, &text)?;
         write_sorted(&path, &settings, &header, &rows)?;
         Ok(path)
@@ -189,6 +200,12 @@ impl ResultsFile {
 type Parsed = (String, String, BTreeMap<usize, String>);
 
 fn parse(path: &Path, text: &str) -> Result<Parsed, TableError> {
+    parse_rows(path, text, false)
+}
+
+/// [`parse`]; `strict` refuses a row cut short instead of dropping it (a
+/// shard being merged must be whole: its job finished).
+fn parse_rows(path: &Path, text: &str, strict: bool) -> Result<Parsed, TableError> {
     let bad = |line: usize, message: &str| TableError::Malformed {
         file: path.display().to_string(),
         line,
@@ -209,6 +226,15 @@ fn parse(path: &Path, text: &str) -> Result<Parsed, TableError> {
         }
         // A row cut short by an interruption is dropped (its run is redone).
         if line.split(',').count() != columns {
+            if strict {
+                return Err(bad(
+                    n,
+                    &format!(
+                        "a row of {} columns, not {columns}: the job that wrote this file did not finish; run it again to complete it",
+                        line.split(',').count()
+                    ),
+                ));
+            }
             continue;
         }
         let (id, _) = line.split_once(',').unwrap_or((line, ""));
@@ -233,24 +259,27 @@ fn write_sorted(
     header: &str,
     rows: &BTreeMap<usize, String>,
 ) -> Result<(), TableError> {
-    // Written beside and renamed over: the old file stays whole until the
-    // new one is.
-    let tmp = path.with_extension("csv.tmp");
     let mut text = format!("# {settings}\n{header}\n");
     for row in rows.values() {
         text.push_str(row);
         text.push('\n');
     }
-    std::fs::write(&tmp, text).map_err(io(&tmp))?;
-    std::fs::rename(&tmp, path).map_err(io(path))
+    super::output::write_whole(path, text.as_bytes()).map_err(io(path))
 }
 
 /// Join the results files of a job's shards into `out`: they must share
 /// settings (apart from the shard) and header, and the result is the file
-/// the whole job would have written; rows are taken once each
-/// (a run found in two files must have the same values) and sorted by id.
-/// Returns the number of rows. `out` must not exist yet.
+/// the whole job would have written, rows sorted by id. The set must be
+/// complete: every shard `0/N .. N-1/N` once (N from the settings line),
+/// each whole (no row cut short, every run of the shard present when the
+/// settings give the job's run count). Returns the number of rows. `out`
+/// must not exist yet.
 pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<usize, TableError> {
+    let refuse = |file: &Path, message: String| TableError::Malformed {
+        file: file.display().to_string(),
+        line: 0,
+        message,
+    };
     if out.exists() {
         return Err(TableError::Io {
             file: out.display().to_string(),
@@ -260,42 +289,93 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<usize, TableError> {
             ),
         });
     }
-    let mut first: Option<(String, String)> = None;
+    let mut first: Option<(String, String, usize)> = None;
+    // Which input holds each shard.
+    let mut shard_of: BTreeMap<usize, &Path> = BTreeMap::new();
     let mut all = BTreeMap::new();
     for p in inputs {
-        let text = std::fs::read_to_string(p).map_err(io(p))?;
-        let (settings, header, rows) = parse(p, &text)?;
-        let settings = without_shard(&settings);
+        let text = read(p)?;
+        let (full, header, rows) = parse_rows(p, &text, true)?;
+        let shard = shard_in(&full)
+            .ok_or_else(|| refuse(p, format!("its settings line names no shard: `{full}`")))?;
+        let settings = without_shard(&full);
         match &first {
-            None => first = Some((settings, header)),
-            Some((s, h)) if *s != settings || *h != header => {
+            None => first = Some((settings, header, shard.count)),
+            Some((s, h, n)) if *s != settings || *h != header || *n != shard.count => {
                 return Err(TableError::Mismatch {
                     file: p.display().to_string(),
-                    found: settings,
-                    wanted: s.clone(),
+                    found: full,
+                    wanted: format!("{s} (in {} shards)", n),
                 });
             }
             Some(_) => {}
         }
+        if let Some(other) = shard_of.insert(shard.index, p) {
+            return Err(refuse(
+                p,
+                format!(
+                    "shard {shard} again (also {}); each shard is merged once",
+                    other.display()
+                ),
+            ));
+        }
         for (id, row) in rows {
-            if let Some(old) = all.insert(id, row.clone())
-                && old != row
-            {
-                return Err(TableError::Malformed {
-                    file: p.display().to_string(),
-                    line: 0,
-                    message: format!("run {id} differs from another input's"),
-                });
+            if !shard.contains(id) {
+                return Err(refuse(
+                    p,
+                    format!("run {id} is not shard {shard}'s (run k is shard k mod N's)"),
+                ));
             }
+            all.insert(id, row);
         }
     }
-    let (settings, header) = first.ok_or_else(|| TableError::Malformed {
-        file: out.display().to_string(),
-        line: 0,
-        message: "nothing to merge".into(),
-    })?;
+    let (settings, header, count) = first.ok_or_else(|| refuse(out, "nothing to merge".into()))?;
+    let missing: Vec<String> = (0..count)
+        .filter(|i| !shard_of.contains_key(i))
+        .map(|i| format!("{i}/{count}"))
+        .collect();
+    if !missing.is_empty() {
+        return Err(refuse(
+            out,
+            format!(
+                "the job has {count} shards; missing {}: merge every shard's output",
+                missing.join(", ")
+            ),
+        ));
+    }
+    if let Some(runs) = pair(&settings, "runs").and_then(|r| r.parse::<usize>().ok()) {
+        let absent: Vec<usize> = (0..runs).filter(|k| !all.contains_key(k)).collect();
+        if let Some(&k) = absent.first() {
+            return Err(refuse(
+                shard_of[&(k % count)],
+                format!(
+                    "{} of the job's {runs} runs are missing (first: run {k}, shard {}/{count}): finish that shard's job (it resumes) and merge again",
+                    absent.len(),
+                    k % count
+                ),
+            ));
+        }
+        if let Some((&k, _)) = all.range(runs..).next() {
+            return Err(refuse(
+                shard_of[&(k % count)],
+                format!("run {k} is beyond the job's {runs} runs"),
+            ));
+        }
+    }
     write_sorted(out, &settings, &header, &all)?;
     Ok(all.len())
+}
+
+/// The value of `key=` in a settings line.
+fn pair<'a>(settings: &'a str, key: &str) -> Option<&'a str> {
+    settings
+        .split(' ')
+        .find_map(|w| w.strip_prefix(key)?.strip_prefix('='))
+}
+
+/// The shard a settings line names.
+fn shard_in(settings: &str) -> Option<Shard> {
+    pair(settings, "shard")?.parse().ok()
 }
 
 /// The settings line with its shard set to the whole job (`shard=0/1`),
@@ -360,6 +440,42 @@ mod tests {
             ResultsFile::open(&p, "shisen t: a=2 shard=0/1", "id,x"),
             Err(TableError::Mismatch { .. })
         ));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    fn shard_file(dir: &Path, i: usize, n: usize, runs: usize, skip: Option<usize>) -> PathBuf {
+        let p = dir.join(format!("s{i}.csv"));
+        let mut text = format!("# shisen t: runs={runs} shard={i}/{n}\nid,x\n");
+        for k in (0..runs).filter(|k| k % n == i && Some(*k) != skip) {
+            text.push_str(&format!("{k},{}\n", k * 10));
+        }
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+
+    #[test]
+    fn merge_takes_only_whole_sets_of_shards() {
+        let dir = std::env::temp_dir().join(format!("shisen-merge-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let out = dir.join("all.csv");
+        let s: Vec<PathBuf> = (0..3).map(|i| shard_file(&dir, i, 3, 8, None)).collect();
+        let err = |inputs: &[PathBuf]| {
+            let _ = std::fs::remove_file(&out);
+            merge(inputs, &out).unwrap_err().to_string()
+        };
+        assert!(err(&s[..2]).contains("missing 2/3"), "{}", err(&s[..2]));
+        assert!(err(&[s[0].clone(), s[0].clone(), s[1].clone()]).contains("shard 0/3 again"));
+        let gap = shard_file(&dir, 1, 3, 8, Some(4));
+        assert!(err(&[s[0].clone(), gap, s[2].clone()]).contains("run 4"));
+        std::fs::write(&s[1], "# shisen t: runs=8 shard=1/3\nid,x\n1,10\n4\n7,70\n").unwrap();
+        assert!(err(&s).contains("did not finish"));
+        let s1 = shard_file(&dir, 1, 3, 8, None);
+        let _ = std::fs::remove_file(&out);
+        assert_eq!(merge(&[s[2].clone(), s1, s[0].clone()], &out).unwrap(), 8);
+        let text = std::fs::read_to_string(&out).unwrap();
+        assert!(text.starts_with("# shisen t: runs=8 shard=0/1\nid,x\n0,0\n1,10\n"));
+        // The temporary file is gone, and no other file was made.
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 4);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

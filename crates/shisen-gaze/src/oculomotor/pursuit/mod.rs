@@ -64,51 +64,61 @@
 //! inputs are zero (plain M7).
 
 use glam::{DMat2, DVec2, DVec3};
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::util::math::{dir_from_yaw_pitch, yaw_pitch_of};
 
 /// Static parameters of the binocular model (gaze.md section 8). The gains
-/// are Zhang & Wakamatsu's, with the 2006 implementation's values.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// are Zhang & Wakamatsu's, with the 2006 implementation's values. Each
+/// gain is bounded at ten to twenty times its default: the loop is solved
+/// implicitly, so it stays stable, but larger gains are no model of an eye.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct BinocularParams {
-    /// `sigma`: own-eye position-error gain (1/s). Default 100.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// `sigma`: own-eye position-error gain (1/s), 0-1000. Default 100.
+    #[schemars(range(min = 0.0, max = 1000.0))]
     pub sigma: f64,
-    /// `kappa`: other-eye position-error gain (1/s). Default 50.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// `kappa`: other-eye position-error gain (1/s), 0-1000. Default 50.
+    #[schemars(range(min = 0.0, max = 1000.0))]
     pub kappa: f64,
-    /// `nu`: own-eye slip gain. Default 0.5.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// `nu`: own-eye slip gain, 0-10. Default 0.5.
+    #[schemars(range(min = 0.0, max = 10.0))]
     pub nu: f64,
-    /// `eta`: other-eye slip gain. Default 0.2.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// `eta`: other-eye slip gain, 0-10. Default 0.2.
+    #[schemars(range(min = 0.0, max = 10.0))]
     pub eta: f64,
-    /// `rho1`: same-side integrator-to-eye gain. Default 1.5.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// `rho1`: same-side integrator-to-eye gain, 0-10. Default 1.5.
+    #[schemars(range(min = 0.0, max = 10.0))]
     pub rho1: f64,
-    /// `rho2`: cross integrator-to-eye gain. Default 0.5.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// `rho2`: cross integrator-to-eye gain, 0-10. Default 0.5.
+    #[schemars(range(min = 0.0, max = 10.0))]
     pub rho2: f64,
-    /// `alpha`: vestibular gain; the VOR gain is `alpha (rho1 + rho2)`. Default 0.5.
-    #[serde(deserialize_with = "crate::util::check::non_negative")]
+    /// `alpha`: vestibular gain; the VOR gain is `alpha (rho1 + rho2)`,
+    /// 0-10. Default 0.5.
+    #[schemars(range(min = 0.0, max = 10.0))]
     pub alpha: f64,
     /// Distance between the eye centres (m). Default 0.0619 (gaze.md table).
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// 0.02-0.2 m: adults' are 0.054-0.074 m, a child's about 0.045; the
+    /// bounds leave room for stylised heads.
+    #[schemars(range(min = 0.02, max = 0.2))]
     pub interpupillary: f64,
-    /// Eye yaw range, +- (rad). Default 55 deg.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Eye yaw range, +- (rad). Default 55 deg. Above 0, at most 1.5 rad
+    /// (86 deg; at 90 deg the pupil would face sideways).
+    #[schemars(range(max = 1.5), extend("exclusiveMinimum" = 0.0))]
     pub yaw_range: f64,
-    /// Eye pitch range, +- (rad). Default 45 deg.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Eye pitch range, +- (rad). Default 45 deg. Above 0, at most 1.5 rad
+    /// (86 deg), as the yaw range.
+    #[schemars(range(max = 1.5), extend("exclusiveMinimum" = 0.0))]
     pub pitch_range: f64,
     /// Nearest fixation distance the estimate accepts (m). Default 0.05.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// 0.01-10 m; it must also exceed half the interpupillary distance.
+    #[schemars(range(min = 0.01, max = 10.0))]
     pub min_distance: f64,
     /// Farthest fixation distance the estimate accepts (m); parallel lines of
-    /// sight give this. Default 100.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// sight give this. Default 100. 0.01-1000 m (vision's farthest
+    /// sight); it must exceed `min_distance`.
+    #[schemars(range(min = 0.01, max = 1000.0))]
     pub max_distance: f64,
 }
 
@@ -132,7 +142,7 @@ impl Default for BinocularParams {
 }
 
 impl BinocularParams {
-    /// Cross-field checks the field deserialisers cannot make: the vergence
+    /// Cross-field checks the fields' ranges cannot make: the vergence
     /// loop needs `rho1 > rho2` and `sigma > kappa`; the distance bounds
     /// must be ordered and beyond the eyes.
     pub fn validate(&self) -> Result<(), String> {

@@ -502,8 +502,12 @@ fn reset_reseats_without_jump() {
 
 #[test]
 fn params_deserialise() {
-    let p: BinocularParams = ron::from_str("(sigma: 120.0)").unwrap();
+    let p: BinocularParams =
+        crate::util::ron::parse_ron("(sigma: 120.0)", std::path::Path::new("t.ron")).unwrap();
     assert_eq!(p.sigma, 120.0);
     assert_eq!(p.kappa, 50.0);
-    assert!(ron::from_str::<BinocularParams>("(nu: -0.1)").is_err());
+    assert!(
+        crate::util::ron::parse_ron::<BinocularParams>("(nu: -0.1)", std::path::Path::new("t.ron"))
+            .is_err()
+    );
 }

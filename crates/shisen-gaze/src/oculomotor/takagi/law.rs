@@ -2,31 +2,36 @@
 //! track of pieces, and a whole head-and-gaze shift.
 
 use glam::DVec2;
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use crate::util::check::non_negative;
-
 /// One sigmoid move (T1), without offset. `a` in rad, `c` in 1/s, times in s.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+///
+/// Bounds: angles within a half turn; `c` and `T2` small enough that
+/// `exp(c T2 / 2)` stays finite (at most exp(500)); times up to 10 s
+/// (Takagi & Takeda's moves take 0.4-2.5 s).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct Sigmoid {
-    /// Final angle `a` (rad).
-    #[serde(deserialize_with = "crate::util::check::finite")]
+    /// Final angle `a` (rad), -3.15 to 3.15 (a half turn either way).
+    #[schemars(range(min = -3.15, max = 3.15))]
     pub a: f64,
-    /// Asymmetry `b`: 1 symmetric, < 1 slow start / fast end, > 1 the reverse.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Asymmetry `b`: 1 symmetric, < 1 slow start / fast end, > 1 the
+    /// reverse; 0.01-100 (the published fits use 0.5-4).
+    #[schemars(range(min = 0.01, max = 100.0))]
     pub b: f64,
-    /// Steepness `c` (1/s); small is nearly linear.
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Steepness `c` (1/s); small is nearly linear. 0.01-100 (the
+    /// published fits use 1.5-16).
+    #[schemars(range(min = 0.01, max = 100.0))]
     pub c: f64,
-    /// `T1`, wait before moving (s).
-    #[serde(deserialize_with = "non_negative")]
+    /// `T1`, wait before moving (s), 0-10.
+    #[schemars(range(min = 0.0, max = 10.0))]
     pub wait: f64,
-    /// `T2`, moving time (s).
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// `T2`, moving time (s), 0.01-10.
+    #[schemars(range(min = 0.01, max = 10.0))]
     pub moving: f64,
-    /// `T3`, hold after arriving (s).
-    #[serde(deserialize_with = "non_negative")]
+    /// `T3`, hold after arriving (s), 0-10.
+    #[schemars(range(min = 0.0, max = 10.0))]
     pub hold: f64,
 }
 
@@ -121,21 +126,22 @@ impl Sigmoid {
     }
 }
 
-/// Takagi & Takeda's "linear model": constant angular velocity from `t1` to `t2`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+/// Takagi & Takeda's "linear model": constant angular velocity from `t1`
+/// to `t2`. Bounds as `Sigmoid`'s.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct Linear {
-    /// Final angle (rad).
-    #[serde(deserialize_with = "crate::util::check::finite")]
+    /// Final angle (rad), -3.15 to 3.15 (a half turn either way).
+    #[schemars(range(min = -3.15, max = 3.15))]
     pub a: f64,
-    /// Wait (s).
-    #[serde(deserialize_with = "non_negative")]
+    /// Wait (s), 0-10.
+    #[schemars(range(min = 0.0, max = 10.0))]
     pub wait: f64,
-    /// Moving time (s).
-    #[serde(deserialize_with = "crate::util::check::positive")]
+    /// Moving time (s), 0.01-10.
+    #[schemars(range(min = 0.01, max = 10.0))]
     pub moving: f64,
-    /// Hold (s).
-    #[serde(deserialize_with = "non_negative")]
+    /// Hold (s), 0-10.
+    #[schemars(range(min = 0.0, max = 10.0))]
     pub hold: f64,
 }
 
@@ -172,7 +178,7 @@ impl Linear {
 }
 
 /// One piece of an axis trajectory.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
 pub enum Segment {
     /// A (T1) sigmoid.
     Sigmoid(Sigmoid),
@@ -209,11 +215,11 @@ impl Segment {
 
 /// One axis: an offset (the starting angle) plus a sum of segments; two
 /// sigmoids make the wind-up.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct AxisTrack {
-    /// Angle added throughout (rad).
-    #[serde(deserialize_with = "crate::util::check::finite")]
+    /// Angle added throughout (rad), -3.15 to 3.15 (a half turn either way).
+    #[schemars(range(min = -3.15, max = 3.15))]
     pub offset: f64,
     /// Segments, summed.
     pub segments: Vec<Segment>,
@@ -270,7 +276,7 @@ pub struct GazeShiftSample {
 }
 
 /// A complete expressive gaze shift: head and gaze tracks per axis.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
 #[serde(default, deny_unknown_fields)]
 pub struct GazeShift {
     /// Head yaw.

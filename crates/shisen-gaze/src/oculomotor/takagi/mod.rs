@@ -178,10 +178,18 @@ mod tests {
 
     #[test]
     fn sigmoid_deserialises() {
-        let s: Sigmoid = ron::from_str("(a: 0.5, c: 4.0)").unwrap();
+        let s: Sigmoid =
+            crate::util::ron::parse_ron("(a: 0.5, c: 4.0)", std::path::Path::new("t.ron")).unwrap();
         assert_eq!((s.a, s.b, s.c), (0.5, 1.0, 4.0));
-        assert!(ron::from_str::<Sigmoid>("(b: 0.0)").is_err());
-        let g: GazeShift = ron::from_str("(head_yaw: (segments: [Sigmoid((a: 0.3))]))").unwrap();
+        assert!(
+            crate::util::ron::parse_ron::<Sigmoid>("(b: 0.0)", std::path::Path::new("t.ron"))
+                .is_err()
+        );
+        let g: GazeShift = crate::util::ron::parse_ron(
+            "(head_yaw: (segments: [Sigmoid((a: 0.3))]))",
+            std::path::Path::new("t.ron"),
+        )
+        .unwrap();
         assert_eq!(g.head_yaw.segments.len(), 1);
     }
 }

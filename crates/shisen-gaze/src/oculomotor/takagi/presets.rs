@@ -1,6 +1,7 @@
 //! Named expressive gaze shifts built on the sigmoid law (T1) and the
 //! published tables.
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use glam::DVec2;
@@ -10,7 +11,7 @@ use super::law::*;
 /// Named expressive gaze shifts. Takagi & Takeda name these variants but
 /// publish parameters only for the dialogue-like test 2; the values below are
 /// our reading of their descriptions, documented per variant.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 pub enum Preset {
     /// Multi-party dialogue (their fig. 5a, test-2 timing): the eyes lead, the
     /// head follows 0.15 s later and turns about 60 % of the way (test-2 mean
