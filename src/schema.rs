@@ -207,6 +207,9 @@ fn text(s: &Value, key: &str) -> String {
 }
 
 fn number(v: &Value) -> String {
+    if v.is_u64() || v.is_i64() {
+        return v.to_string();
+    }
     match v.as_f64() {
         Some(x) if x.fract() == 0.0 && x.abs() < 1e15 => format!("{x:.0}"),
         Some(x) => format!("{x}"),
@@ -390,7 +393,7 @@ impl Doc<'_> {
                 md.push_str("| value | meaning |\n|---|---|\n");
                 for a in &units {
                     let names: Vec<String> = match a.get("enum").and_then(Value::as_array) {
-                        Some(e) => e.iter().map(|v| ron_of(v)).collect(),
+                        Some(e) => e.iter().map(ron_of).collect(),
                         None => vec![ron_of(&a["const"])],
                     };
                     for n in names {

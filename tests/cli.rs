@@ -243,3 +243,114 @@ fn a_plot_writes_no_file_it_was_not_asked_for_and_dash_is_stdout() {
     assert!(err.contains("PASS"), "{err}");
     assert!(!Path::new("-").exists());
 }
+
+/// Start `shisen args`, press Ctrl-C (SIGINT) after `after`, and return
+/// its exit code, how long it took to stop, and its standard error.
+fn interrupt(args: &[&str], after: std::time::Duration) -> (i32, std::time::Duration, String) {
+    use std::io::Read;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shisen"))
+        .args(args)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("binary runs");
+    std::thread::sleep(after);
+    let sent = std::time::Instant::now();
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(kill.success());
+    let status = child.wait().unwrap();
+    let took = sent.elapsed();
+    let mut err = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut err)
+        .unwrap();
+    (status.code().unwrap_or(-1), took, err)
+}
+
+#[test]
+fn ctrl_c_stops_long_commands_within_a_second_with_130() {
+    let second = std::time::Duration::from_millis(1000);
+    let (code, took, err) = interrupt(&["soak", "--minutes", "500"], second);
+    assert_eq!(code, 130, "soak: {err}");
+    assert!(took < 2 * second, "soak took {took:?} to stop");
+    assert!(err.contains("interrupted"), "{err}");
+    // A study keeps every finished run whole, and resumes.
+    let dir = std::env::temp_dir().join(format!("shisen-cli-int-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let csv = dir.join("s.csv");
+    let study = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/studies/attention_vs_attack.ron"
+    );
+    let (code, took, err) = interrupt(
+        &[
+            "study",
+            study,
+            "--out",
+            csv.to_str().unwrap(),
+            "--jobs",
+            "1",
+        ],
+        3 * second,
+    );
+    assert_eq!(code, 130, "study: {err}");
+    assert!(took < 2 * second, "study took {took:?} to stop");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let columns = text.lines().nth(1).unwrap().split(',').count();
+    assert!(
+        text.lines()
+            .skip(2)
+            .all(|l| l.split(',').count() == columns),
+        "a row cut short:\n{text}"
+    );
+    // Resuming accepts the file (and is interrupted again).
+    let (code, _, err) = interrupt(
+        &[
+            "study",
+            study,
+            "--out",
+            csv.to_str().unwrap(),
+            "--jobs",
+            "1",
+        ],
+        second,
+    );
+    assert_eq!(code, 130, "resumed study: {err}");
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn outputs_never_overwrite_inputs_or_each_other() {
+    let p = write_scene("overwrite_me.ron", "Scene(duration: 0.1)");
+    let before = std::fs::read_to_string(&p).unwrap();
+    let (code, _, err) = shisen(&["run", &p, "--trace", &p]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--trace") && err.contains("reads"), "{err}");
+    assert_eq!(std::fs::read_to_string(&p).unwrap(), before);
+    // Two scenes of one name in two folders would write one trace.
+    let a = write_scene("twin.ron", "Scene(duration: 0.1)");
+    let dir = Path::new(&a).parent().unwrap().join("other");
+    std::fs::create_dir_all(&dir).unwrap();
+    let b = dir.join("twin.ron");
+    std::fs::write(&b, "Scene(duration: 0.1)").unwrap();
+    let out = dir.join("runs");
+    let (code, _, err) = shisen(&[
+        "test",
+        &a,
+        b.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("twin.csv"), "{err}");
+    // A missing folder is refused before the run.
+    let (code, _, err) = shisen(&["run", &a, "--trace", "/nonexistent/x/t.csv"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("does not exist"), "{err}");
+}

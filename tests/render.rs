@@ -159,3 +159,46 @@ fn render_command_writes_a_png() {
     assert_eq!(img.dimensions(), (96, 64));
     let _ = std::fs::remove_file(out);
 }
+
+#[test]
+#[ignore = "needs a graphics adapter: cargo test --test render -- --ignored"]
+fn an_exported_head_imported_again_renders() {
+    drop(gpu());
+    let dir = std::env::temp_dir().join(format!("shisen-import-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let shisen = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_shisen"))
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .expect("run shisen");
+        let err = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(out.status.success(), "shisen {args:?}: {err}");
+    };
+    shisen(&["face", "export", "--out", "head.glb", "--rows", "32"]);
+    assert!(dir.join("head.landmarks.ron").is_file());
+    std::fs::write(
+        dir.join("imported.ron"),
+        "Scene(duration: 1.0, vh: (face: (mesh: \"head.glb\", landmarks: \"head.landmarks.ron\")),\n  timeline: [(at: 0.0, do: Emotion(emotion: Happiness, speed: Fast))])",
+    )
+    .unwrap();
+    shisen(&[
+        "render",
+        "imported.ron",
+        "--at",
+        "0.8",
+        "--view",
+        "face",
+        "--size",
+        "200x200",
+        "--out",
+        "face.png",
+    ]);
+    let img = image::open(dir.join("face.png")).expect("png").to_rgba8();
+    let distinct: std::collections::HashSet<_> = img.pixels().map(|p| p.0).collect();
+    assert!(
+        distinct.len() > 50,
+        "the imported head's picture is nearly blank"
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -1,7 +1,10 @@
-//! Scene, gains and muscle-database parsing plus validation must never
-//! panic, whatever the bytes: every failure is a `LoadError`. A scene that
+//! Reading every input file kind must never panic, hang or accept a value
+//! outside its documented range, whatever the bytes: scenes, gains,
+//! muscle databases, landmark files, studies and emotion scripts; every
+//! failure is a `LoadError` naming a place in the text. A scene that
 //! parses is also checked against every run length an override could ask
-//! for (the cross-reference checks of `--duration`).
+//! for (the cross-reference checks of `--duration`), and what any kind
+//! accepts is inside its schema.
 #![no_main]
 
 use std::path::Path;
@@ -26,7 +29,16 @@ fuzz_target!(|data: &[u8]| {
             assert_eq!(again.ok().as_ref(), Some(&scene));
         }
     }
-    let _ = shisen::util::ron::parse_ron::<shisen::physics::control::Gains>(text, file);
+    if let Ok(g) = shisen::util::ron::parse_ron::<shisen::physics::control::Gains>(text, file) {
+        assert!(shisen::util::schema::violations(&g).is_empty());
+    }
     let _ = shisen::face::params::FaceParams::parse(text, file);
     let _ = shisen::face::script::parse_script(text, file);
+    let _ = shisen::face::import::LandmarkFile::parse(text, file);
+    let _ = shisen::util::ron::parse_ron::<shisen::tools::study::Study>(text, file);
+    // Placing an error never panics, whatever the path asked for.
+    let places = shisen::util::locate::Locations::scan(text);
+    let _ = places.find("vh.personality.a2");
+    let _ = places.find("/timeline/0/do/Punch/speed");
+    let _ = places.non_finite();
 });

@@ -303,7 +303,8 @@ pub enum Command {
 #[derive(Subcommand)]
 pub enum FaceCommand {
     /// Export the neutral generated head to glTF (.glb) with one morph
-    /// target per muscle and ARKit-named shapes.
+    /// target per muscle and ARKit-named shapes, and its landmark file
+    /// beside it (`NAME.landmarks.ron`), so it can be imported again.
     Export {
         /// Output .glb file.
         #[arg(long)]

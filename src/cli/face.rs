@@ -9,15 +9,25 @@ pub fn face_cmd(c: FaceCommand) -> Result<()> {
     use shisen::face::{Face, calibrate, exchange, mesh::MeshParams, params::FaceParams};
     match c {
         FaceCommand::Export { out, rows } => {
-            Outputs::new().file("--out", &out).check()?;
+            // The head's landmarks beside it, so it can be imported again
+            // (a scene's `vh.face.mesh` and `vh.face.landmarks`).
+            let landmarks = out.with_extension("landmarks.ron");
+            Outputs::new()
+                .file("--out", &out)
+                .file("--out (landmarks)", &landmarks)
+                .check()?;
             let face = Face::new(MeshParams { rows }, FaceParams::default_params());
             write_whole(&out, &exchange::export_glb(&face))
                 .with_context(|| format!("cannot write {}", out.display()))?;
+            let lm = shisen::face::import::LandmarkFile::from_landmarks(&face.mesh.landmarks);
+            write_whole(&landmarks, lm.to_ron().as_bytes())
+                .with_context(|| format!("cannot write {}", landmarks.display()))?;
             println!(
-                "{}: {} vertices, {} triangles, morph targets per muscle and ARKit shape",
+                "{}: {} vertices, {} triangles, morph targets per muscle and ARKit shape; landmarks in {}",
                 out.display(),
                 face.mesh.positions.len(),
-                face.mesh.triangles.len()
+                face.mesh.triangles.len(),
+                landmarks.display()
             );
         }
         FaceCommand::Sheet {

@@ -82,6 +82,14 @@ fn main() -> ExitCode {
     }
     if cli.command.is_some() {
         install_interrupt();
+        // Output piped into a reader that stops early (`| head`) ends the
+        // command quietly, as it does any Unix tool, instead of a panic in
+        // `println!` or an error. Rust ignores SIGPIPE by default.
+        // SAFETY: resetting a signal's disposition to its default, before
+        // any output and before any other thread exists.
+        unsafe {
+            libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+        }
     }
     match cli.command {
         None if cli.print_bindings => {
@@ -226,7 +234,7 @@ fn main() -> ExitCode {
                 .file("--out", &out)
                 .check()
                 .map_err(anyhow::Error::from)
-                .and_then(|()| Ok(shisen::tools::plot::plot_trace(&trace, &out, size)?)),
+                .and_then(|()| shisen::tools::plot::plot_trace(&trace, &out, size)),
         ),
         Some(Command::Render {
             scene,

@@ -256,12 +256,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
             bar.set_position(t as u64);
             true
         },
-    );
-    // A reader that went away (`--trace - | head`) ends the run quietly.
-    let report = match report {
-        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => return Ok(ExitCode::SUCCESS),
-        r => r?,
-    };
+    )?;
     bar.finish_and_clear();
     drop(sink);
     let secs = wall.elapsed().as_secs_f64();

@@ -961,6 +961,8 @@ impl Renderer {
     }
 
     /// The GPU mesh of a key (a dynamic one once uploaded).
+    /// The mesh a draw names, if it has anything to draw (a head without
+    /// lid rims has no lashes, one without a hairline no hair shell).
     fn mesh_of(&self, key: MeshKey) -> Option<&GpuMesh> {
         match key {
             MeshKey::Face
@@ -970,6 +972,7 @@ impl Renderer {
             | MeshKey::HairShell => self.dynamic.get(&key).map(|(m, _)| m),
             key => self.meshes.get(&key),
         }
+        .filter(|m| m.count > 0)
     }
 
     /// Block until the GPU has finished the submitted work.

@@ -260,8 +260,8 @@ impl TraceTable {
 /// line-of-sight error, and the gaze-target switches marked.
 pub fn plot_trace(trace: &Path, out: &Path, size: (u32, u32)) -> Result<()> {
     // A trace is data, up to an hour of ticks: 2 GiB at most.
-    let text = shisen_gaze::util::ron::read_text_up_to(trace, 2 << 30)
-        .with_context(|| format!("cannot read the trace"))?;
+    let text =
+        shisen_gaze::util::ron::read_text_up_to(trace, 2 << 30).context("cannot read the trace")?;
     let tt = TraceTable::parse(&text, &trace.display().to_string())?;
     let t = tt.column("t")?;
     let zip = |a: &[f64]| t.iter().copied().zip(a.iter().copied()).collect::<Vec<_>>();
