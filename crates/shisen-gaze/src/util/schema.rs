@@ -137,10 +137,18 @@ fn collect(e: &jsonschema::ValidationError, out: &mut Vec<Violation>) {
         // alternatives: report the errors of the one that names this
         // variant, i.e. whose errors are all inside the value.
         K::OneOfNotValid { context } | K::AnyOf { context } => {
-            let here = e.instance_path().as_str().len();
-            if let Some(branch) = context.iter().find(|b| {
-                !b.is_empty() && b.iter().all(|x| x.instance_path().as_str().len() > here)
-            }) {
+            let here = e.instance_path().as_str();
+            // A branch of another form fails on the value's kind, tag or
+            // fields here; the one of the value's form fails deeper, or
+            // on a nested choice (an optional enum) here.
+            let other_form = |x: &jsonschema::ValidationError| {
+                x.instance_path().as_str() == here
+                    && !matches!(x.kind(), K::OneOfNotValid { .. } | K::AnyOf { .. })
+            };
+            if let Some(branch) = context
+                .iter()
+                .find(|b| !b.is_empty() && !b.iter().any(other_form))
+            {
                 for x in branch {
                     collect(x, out);
                 }
@@ -234,5 +242,38 @@ mod tests {
             gain: None,
         };
         assert!(violations(&ok).is_empty());
+    }
+
+    /// Optional enums nest one choice in another.
+    #[derive(JsonSchema, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct WithSeeds {
+        /// Seeds.
+        seeds: Option<Seeds>,
+    }
+
+    /// Seeds.
+    #[derive(JsonSchema, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    enum Seeds {
+        /// A list.
+        List(Vec<u64>),
+        /// A range.
+        Range {
+            /// Last seed.
+            #[schemars(range(min = 0, max = 1000))]
+            to: u64,
+        },
+    }
+
+    #[test]
+    fn a_value_inside_an_optional_enum_is_named() {
+        let v = WithSeeds {
+            seeds: Some(Seeds::Range { to: 5000 }),
+        };
+        let got = violations(&v);
+        assert_eq!(got.len(), 1, "{got:?}");
+        assert_eq!(got[0].field, "seeds.Range.to");
+        assert_eq!(got[0].message, "must be <= 1000, got 5000");
     }
 }
