@@ -120,8 +120,10 @@ pub fn reference() -> String {
         let _ = writeln!(md, "- [{title}](#{})", anchor(title));
     }
     md.push('\n');
-    let mut written: HashSet<String> = HashSet::new();
     for k in FileKind::ALL {
+        // Each kind's types under its own anchors (`scene-gains`,
+        // `gains-gains`): a type two kinds share is described in both.
+        let mut written: HashSet<String> = HashSet::new();
         let schema = k.schema();
         let (title, about) = k.about();
         let _ = write!(md, "## {title}\n\n{about}\n\n");
@@ -135,7 +137,10 @@ pub fn reference() -> String {
             .and_then(Value::as_str)
             .unwrap_or("Root")
             .to_string();
-        let doc = Doc { defs: &defs };
+        let doc = Doc {
+            defs: &defs,
+            prefix: anchor(title.split(' ').next().unwrap_or(title)),
+        };
         // The root, then every type it reaches, each once in the reference.
         let mut order = vec![(root_name.clone(), schema.clone())];
         let mut queued: BTreeSet<String> = BTreeSet::new();
@@ -196,6 +201,8 @@ fn refs(s: &Value) -> Vec<String> {
 
 struct Doc<'a> {
     defs: &'a Map<String, Value>,
+    /// The file kind's anchor prefix.
+    prefix: String,
 }
 
 fn text(s: &Value, key: &str) -> String {
@@ -242,7 +249,7 @@ impl Doc<'_> {
     fn type_name(&self, s: &Value) -> String {
         if let Some(r) = s.get("$ref").and_then(Value::as_str) {
             let name = r.trim_start_matches("#/$defs/");
-            return format!("[`{name}`](#{})", anchor(name));
+            return format!("[`{name}`](#{})", self.anchor_of(name));
         }
         if let Some(alts) = self.alternatives(s) {
             if alts.len() == 1 {
@@ -377,8 +384,17 @@ impl Doc<'_> {
         md.push('\n');
     }
 
+    /// A type's anchor in this file kind's part of the reference.
+    fn anchor_of(&self, name: &str) -> String {
+        format!("{}-{}", self.prefix, anchor(name))
+    }
+
     fn section(&self, md: &mut String, name: &str, s: &Value) {
-        let _ = write!(md, "### `{name}`\n\n");
+        let _ = write!(
+            md,
+            "<a id=\"{}\"></a>\n\n### `{name}`\n\n",
+            self.anchor_of(name)
+        );
         let d = text(s, "description");
         if !d.is_empty() {
             let _ = write!(md, "{d}\n\n");
@@ -609,7 +625,10 @@ pub fn scene_examples() -> Vec<(String, String, String)> {
         .and_then(Value::as_object)
         .cloned()
         .unwrap_or_default();
-    let doc = Doc { defs: &defs };
+    let doc = Doc {
+        defs: &defs,
+        prefix: "scene".into(),
+    };
     let mut out = Vec::new();
     for (name, def) in &defs {
         let Some(alts) = doc.alternatives(def) else {

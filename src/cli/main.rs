@@ -25,6 +25,11 @@ fn report(r: Result<()>) -> ExitCode {
 /// 2 for any other error (bad input, an output that cannot be written).
 fn exit(r: Result<ExitCode>) -> ExitCode {
     match r {
+        // Stopped by Ctrl-C, even if the work ended before it noticed.
+        Ok(_) if shisen::tools::stop_requested() => {
+            eprintln!("interrupted");
+            ExitCode::from(INTERRUPTED)
+        }
         Ok(code) => code,
         Err(e) if e.downcast_ref::<Interrupted>().is_some() => {
             eprintln!("{e:#}");

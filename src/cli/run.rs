@@ -56,12 +56,15 @@ pub fn render(
     {
         anyhow::bail!("--out {}: must name a .png file", out.display());
     }
+    let loaded = load(scene)?;
     let mut plan = Outputs::new().file("--out", out);
     if scene != "default" {
         plan = plan.input(Path::new(scene));
     }
+    for f in loaded.files() {
+        plan = plan.input(&f);
+    }
     plan.check()?;
-    let loaded = load(scene)?;
     let mut sim = loaded.sim();
     let bar = progress(at, "s simulated");
     let mut ticks = 0u64;
@@ -175,9 +178,13 @@ pub fn install_interrupt() {
             std::process::exit(i32::from(INTERRUPTED));
         }
         shisen::tools::request_stop();
-        std::thread::sleep(STOP_GRACE);
-        eprintln!("interrupted");
-        std::process::exit(i32::from(INTERRUPTED));
+        // The grace period on its own thread: the handler returns, so a
+        // second Ctrl-C is heard at once.
+        std::thread::spawn(|| {
+            std::thread::sleep(STOP_GRACE);
+            eprintln!("interrupted");
+            std::process::exit(i32::from(INTERRUPTED));
+        });
     });
 }
 
@@ -190,9 +197,13 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
     {
         bail!("--plot {}: must name a .png file", p.display());
     }
+    let mut loaded = load(&a.scene)?;
     let mut plan = Outputs::new();
     if a.scene != "default" {
         plan = plan.input(Path::new(&a.scene));
+    }
+    for f in loaded.files() {
+        plan = plan.input(&f);
     }
     if let Some(t) = &a.trace {
         plan = plan.file("--trace", t);
@@ -201,7 +212,6 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         plan = plan.file("--plot", p);
     }
     plan.check()?;
-    let mut loaded = load(&a.scene)?;
     if let Some(s) = a.seed {
         loaded.scene.seed = s;
     }
@@ -224,9 +234,21 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
     let stdout = a.trace.as_deref() == Some(Path::new("-"));
     // A plot needs a trace: without one asked for, a temporary file (no
     // file the user did not name is written or replaced).
-    let temp = (a.plot.is_some() && a.trace.is_none())
-        .then(|| std::env::temp_dir().join(format!("shisen-plot-{}.csv", std::process::id())));
-    let trace_path = a.trace.clone().filter(|_| !stdout).or(temp.clone());
+    let temp = match (a.plot.is_some(), a.trace.is_none()) {
+        (true, true) => Some(
+            tempfile::Builder::new()
+                .prefix("shisen-plot-")
+                .suffix(".csv")
+                .tempfile()
+                .context("cannot make a temporary trace for --plot")?,
+        ),
+        _ => None,
+    };
+    let trace_path = a
+        .trace
+        .clone()
+        .filter(|_| !stdout)
+        .or(temp.as_ref().map(|t| t.path().to_path_buf()));
     let mut sink: Option<Box<dyn Write>> = if stdout {
         Some(Box::new(BufWriter::new(std::io::stdout().lock())))
     } else {
@@ -292,11 +314,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         ));
     }
     if let (Some(p), Some(t)) = (&a.plot, &trace_path) {
-        let r = shisen::tools::plot::plot_trace(t, p, (1400, 900));
-        if let Some(tmp) = &temp {
-            let _ = std::fs::remove_file(tmp);
-        }
-        r?;
+        shisen::tools::plot::plot_trace(t, p, (1400, 900))?;
         say(format!("plot written to {}", p.display()));
     }
     let passed = report.verdicts.iter().filter(|v| v.pass).count();

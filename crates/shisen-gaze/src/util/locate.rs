@@ -141,6 +141,9 @@ struct Frame {
     key: Option<String>,
     /// `Some(...)`: its one element is the value itself, not an index.
     transparent: bool,
+    /// Opened by a name (`Point(`): a first element that is itself a tuple
+    /// or list is a newtype's content (`Point((x, y, z))`), not index 0.
+    named: bool,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -331,7 +334,8 @@ impl<'a> Scanner<'a> {
                 && value_path.is_empty()
             {
                 value_path = f.base.clone();
-                if !f.transparent {
+                let newtype = f.named && f.index == 0 && matches!(tok, Tok::Punct('(' | '['));
+                if !f.transparent && !newtype {
                     value_path.push((f.index.to_string(), false));
                 }
                 record(&value_path, *line, *col);
@@ -363,6 +367,7 @@ impl<'a> Scanner<'a> {
                         index: 0,
                         key: None,
                         transparent: name == "Some",
+                        named: true,
                     });
                     i += 2;
                     continue;
@@ -379,6 +384,7 @@ impl<'a> Scanner<'a> {
                         index: 0,
                         key: None,
                         transparent: false,
+                        named: false,
                     });
                 }
                 Tok::Punct(')' | ']' | '}') => {
@@ -464,6 +470,9 @@ Scene(
         assert_eq!(loc.find("onset.Surprise.upper"), (4, 16));
         assert_eq!(loc.find("/onset/Happiness/upper"), (3, 17));
         assert_eq!(loc.find("do.Punch.speed"), (6, 13));
+        let loc = Locations::scan("(t: Point((0.0, 500.0, 0.0)), u: Point(1.0, 2.0, 3.0))");
+        assert_eq!(loc.find("/t/Point/1"), (1, 17));
+        assert_eq!(loc.find("/u/Point/2"), (1, 50));
         let loc = Locations::scan("(\n gains: Some(Gains(\n  neck: (kp: -3.0),\n )),\n)");
         assert_eq!(loc.find("gains.neck.kp"), (3, 10));
     }

@@ -114,8 +114,9 @@ fn key_before(text: &str, line: usize, col: usize) -> Option<String> {
     let colon = before.rfind(':')?;
     let head = before[..colon].trim_end();
     let start = head
-        .rfind(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
-        .map_or(0, |i| i + 1);
+        .char_indices()
+        .rfind(|&(_, c)| !(c.is_ascii_alphanumeric() || c == '_'))
+        .map_or(0, |(i, c)| i + c.len_utf8());
     let key = &head[start..];
     (!key.is_empty() && key.starts_with(|c: char| c.is_ascii_lowercase() || c == '_'))
         .then(|| key.to_string())
@@ -155,13 +156,12 @@ pub fn read_text_up_to(path: &Path, max: u64) -> Result<String, LoadError> {
         reason,
     };
     let bad = |m: String| fail(std::io::Error::new(std::io::ErrorKind::InvalidData, m));
-    let file = std::fs::File::open(path).map_err(fail)?;
-    // A device or pipe (`/dev/zero`) would be read forever, and a file
-    // larger than any input is not one.
-    let meta = file.metadata().map_err(fail)?;
-    if !meta.is_file() {
+    // A device or pipe (`/dev/zero`, a FIFO) would be read (or opened)
+    // forever, and a file larger than any input is not one.
+    if !std::fs::metadata(path).map_err(fail)?.is_file() {
         return Err(bad("not a regular file".into()));
     }
+    let file = std::fs::File::open(path).map_err(fail)?;
     let mut text = String::new();
     file.take(max + 1).read_to_string(&mut text).map_err(fail)?;
     if text.len() as u64 > max {

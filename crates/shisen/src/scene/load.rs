@@ -96,6 +96,19 @@ impl LoadedScene {
         Ok(loaded)
     }
 
+    /// The files this scene reads besides itself (gains, face database,
+    /// mesh and landmarks), resolved against its folder: inputs no
+    /// command may write over.
+    pub fn files(&self) -> Vec<PathBuf> {
+        let dir = Path::new(&self.source).parent().unwrap_or(Path::new("."));
+        let f = &self.scene.vh.face;
+        [&self.scene.gains_file, &f.database, &f.mesh, &f.landmarks]
+            .into_iter()
+            .flatten()
+            .map(|p| dir.join(p))
+            .collect()
+    }
+
     /// The simulation model this scene describes.
     pub fn model(&self) -> Model {
         let vh = &self.scene.vh;

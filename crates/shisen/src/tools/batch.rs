@@ -195,11 +195,13 @@ fn run_kept(loaded: &LoadedScene, csv: &Path) -> Result<Report, String> {
     let mut w = BufWriter::new(tmp);
     let report = headless::run(loaded, None, Some(&mut w), 1).map_err(|e| err(&e))?;
     let tmp = w.into_inner().map_err(|e| err(&e.into_error()))?;
-    tmp.persist(csv).map_err(|e| err(&e.error))?;
-    if !report.interrupted {
-        crate::tools::plot::plot_trace(csv, &csv.with_extension("png"), (1400, 900))
-            .map_err(|e| err(&e))?;
+    // A run cut short keeps the last whole trace (and its plot) in place.
+    if report.interrupted {
+        return Ok(report);
     }
+    tmp.persist(csv).map_err(|e| err(&e.error))?;
+    crate::tools::plot::plot_trace(csv, &csv.with_extension("png"), (1400, 900))
+        .map_err(|e| err(&e))?;
     Ok(report)
 }
 
@@ -282,6 +284,13 @@ pub fn merge_junit(reports: &[String]) -> Result<String, String> {
     for (k, text) in reports.iter().enumerate() {
         let (scenes, shard) = junit_job(text)
             .ok_or_else(|| format!("input {}: no `<!-- shisen test: scenes=S shard=I/N -->` line (not a shisen report, or an old one)", k + 1))?;
+        if shard.count > scenes.max(1) {
+            return Err(format!(
+                "input {}: {} shards of a job of {scenes} scenes",
+                k + 1,
+                shard.count
+            ));
+        }
         match job {
             None => {
                 job = Some((scenes, shard.count));
@@ -321,10 +330,11 @@ pub fn merge_junit(reports: &[String]) -> Result<String, String> {
         failures += num("failures")?;
         errors += num("errors")?;
         time += attr("time")?.parse::<f64>().map_err(|_| "bad time")?;
-        let close = text
+        let body = &text[head_end + 1..];
+        let close = body
             .rfind("</testsuites>")
             .ok_or("unterminated <testsuites>")?;
-        suites.push_str(text[head_end + 1..close].trim_start_matches('\n'));
+        suites.push_str(body[..close].trim_start_matches('\n'));
     }
     let (scenes, count) = job.ok_or("nothing to merge")?;
     let missing: Vec<String> = (0..count)

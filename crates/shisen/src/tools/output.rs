@@ -150,9 +150,14 @@ fn writable(dir: &Path) -> std::io::Result<()> {
 /// file beside it, renamed over `path` once complete (no other file is
 /// touched, and an interruption leaves the old `path` as it was).
 pub fn write_whole(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    use std::os::unix::fs::PermissionsExt;
+    // The file keeps its mode when replaced; a new one is readable by all
+    // (a temporary file would be the owner's only).
+    let mode = std::fs::metadata(path).map_or(0o644, |m| m.permissions().mode() & 0o7777);
     let mut tmp = tempfile::Builder::new()
         .prefix(".shisen-")
         .suffix(".tmp")
+        .permissions(std::fs::Permissions::from_mode(mode))
         .tempfile_in(folder_of(path))?;
     tmp.write_all(bytes)?;
     tmp.as_file().sync_data()?;

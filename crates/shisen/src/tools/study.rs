@@ -344,6 +344,7 @@ impl LoadedStudy {
             self.scene(k)?;
         }
         let bar = parallel::bar(todo.len() as u64, "runs");
+        let made = std::sync::atomic::AtomicUsize::new(0);
         parallel::pool(jobs).install(|| {
             todo.par_iter().try_for_each(|&k| {
                 // Ctrl-C: no new run starts; one cut short is not written.
@@ -370,12 +371,13 @@ impl LoadedStudy {
                     row.push_str(&format!(",{},{}", v.value, u8::from(v.pass)));
                 }
                 results.push(k, &row)?;
+                made.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                 bar.inc(1);
                 anyhow::Ok(())
             })
         })?;
         bar.finish_and_clear();
-        Ok(todo.len())
+        Ok(made.into_inner())
     }
 }
 

@@ -330,27 +330,34 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<usize, TableError> {
         }
     }
     let (settings, header, count) = first.ok_or_else(|| refuse(out, "nothing to merge".into()))?;
-    let missing: Vec<String> = (0..count)
-        .filter(|i| !shard_of.contains_key(i))
-        .map(|i| format!("{i}/{count}"))
-        .collect();
-    if !missing.is_empty() {
+    // Counted, and the first few named (the counts come from the files'
+    // text, and may be huge).
+    let missing = count - shard_of.len();
+    if missing > 0 {
+        let first: Vec<String> = (0..count)
+            .filter(|i| !shard_of.contains_key(i))
+            .take(5)
+            .map(|i| format!("{i}/{count}"))
+            .collect();
         return Err(refuse(
             out,
             format!(
-                "the job has {count} shards; missing {}: merge every shard's output",
-                missing.join(", ")
+                "the job has {count} shards; {missing} missing ({}{}): merge every shard's output",
+                first.join(", "),
+                if missing > first.len() { ", ..." } else { "" }
             ),
         ));
     }
     if let Some(runs) = pair(&settings, "runs").and_then(|r| r.parse::<usize>().ok()) {
-        let absent: Vec<usize> = (0..runs).filter(|k| !all.contains_key(k)).collect();
-        if let Some(&k) = absent.first() {
+        let absent = runs - all.range(..runs).count();
+        if let Some(k) = (0..runs)
+            .find(|k| !all.contains_key(k))
+            .filter(|_| absent > 0)
+        {
             return Err(refuse(
                 shard_of[&(k % count)],
                 format!(
-                    "{} of the job's {runs} runs are missing (first: run {k}, shard {}/{count}): finish that shard's job (it resumes) and merge again",
-                    absent.len(),
+                    "{absent} of the job's {runs} runs are missing (first: run {k}, shard {}/{count}): finish that shard's job (it resumes) and merge again",
                     k % count
                 ),
             ));
@@ -463,7 +470,7 @@ mod tests {
             let _ = std::fs::remove_file(&out);
             merge(inputs, &out).unwrap_err().to_string()
         };
-        assert!(err(&s[..2]).contains("missing 2/3"), "{}", err(&s[..2]));
+        assert!(err(&s[..2]).contains("1 missing (2/3)"), "{}", err(&s[..2]));
         assert!(err(&[s[0].clone(), s[0].clone(), s[1].clone()]).contains("shard 0/3 again"));
         let gap = shard_file(&dir, 1, 3, 8, Some(4));
         assert!(err(&[s[0].clone(), gap, s[2].clone()]).contains("run 4"));
