@@ -492,7 +492,7 @@ fn study<'py>(py: Python<'py>, path: PathBuf, jobs: usize) -> PyResult<Vec<Bound
                 .map(|k| loaded.scene(k))
                 .collect::<Result<_, _>>()
         })
-        .map_err(PyValueError::new_err)?;
+        .map_err(|e| scene_error(py, e))?;
     let reports = py.detach(|| {
         shisen::tools::parallel::pool(jobs).install(|| {
             scenes

@@ -131,7 +131,19 @@ impl ResultsFile {
         let mut done = BTreeMap::new();
         let exists = path.exists();
         if exists {
-            let text = read(path)?;
+            let mut text = read(path)?;
+            // A row cut short with no line end (a crash mid-write) would
+            // have the next row glued onto it: cut the file back to its
+            // last whole line, and that run is made again.
+            if !text.is_empty() && !text.ends_with('\n') {
+                let keep = text.rfind('\n').map_or(0, |i| i + 1);
+                std::fs::OpenOptions::new()
+                    .write(true)
+                    .open(path)
+                    .and_then(|f| f.set_len(keep as u64))
+                    .map_err(io(path))?;
+                text.truncate(keep);
+            }
             let (found, found_header, rows) = parse(path, &text)?;
             if found != settings || found_header != header {
                 return Err(TableError::Mismatch {
@@ -437,6 +449,10 @@ mod tests {
         f.push(2, "20").unwrap();
         f.push(0, "0").unwrap();
         drop(f);
+        // A row cut short, with no line end, is dropped and redone.
+        let mut text = std::fs::read_to_string(&p).unwrap();
+        text.push_str("1,1");
+        std::fs::write(&p, text).unwrap();
         let f = ResultsFile::open(&p, "shisen t: a=1 shard=0/1", "id,x").unwrap();
         assert!(f.has(0) && f.has(2) && !f.has(1));
         f.push(1, "10").unwrap();
