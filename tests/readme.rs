@@ -96,6 +96,9 @@ fn run(dir: &Path, line: &Line, extra: &str) {
         .arg("-c")
         .arg(format!("{}{extra}", line.shell))
         .current_dir(dir)
+        // Mesa's device-select layer prints "error: XDG_RUNTIME_DIR ..."
+        // under a bare X server; it is not the command's error.
+        .env("NODEVICE_SELECT", "1")
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);

@@ -174,16 +174,28 @@ const STOP_GRACE: std::time::Duration = std::time::Duration::from_millis(800);
 pub fn install_interrupt() {
     // Without a handler (another one installed) Ctrl-C just ends the process.
     let _ = ctrlc::set_handler(|| {
+        // Ending the process here must not wait on anything another thread
+        // may hold (the standard streams' locks: `process::exit` flushes
+        // standard output, a progress bar may be drawing on standard
+        // error): a plain write and `_exit`.
+        let end = || {
+            const MSG: &[u8] = b"interrupted\n";
+            // SAFETY: a write of a static buffer to fd 2, then the end of
+            // the process; nothing runs after it.
+            unsafe {
+                libc::write(2, MSG.as_ptr().cast(), MSG.len());
+                libc::_exit(i32::from(INTERRUPTED))
+            }
+        };
         if stop_requested() {
-            std::process::exit(i32::from(INTERRUPTED));
+            end();
         }
         shisen::tools::request_stop();
         // The grace period on its own thread: the handler returns, so a
         // second Ctrl-C is heard at once.
-        std::thread::spawn(|| {
+        std::thread::spawn(move || {
             std::thread::sleep(STOP_GRACE);
-            eprintln!("interrupted");
-            std::process::exit(i32::from(INTERRUPTED));
+            end();
         });
     });
 }

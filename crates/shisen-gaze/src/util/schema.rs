@@ -124,6 +124,7 @@ fn dotted(pointer: &str) -> String {
 fn num(v: &Value) -> String {
     match v.as_f64() {
         Some(x) if x.fract() == 0.0 && x.abs() < 1e15 => format!("{x:.0}"),
+        Some(x) if x != 0.0 && (x.abs() < 1e-4 || x.abs() >= 1e15) => format!("{x:e}"),
         Some(x) => format!("{x}"),
         None => v.to_string(),
     }
