@@ -94,8 +94,21 @@ fn every_number_has_a_range_and_every_field_a_description() {
     }
     let (mut problems, mut numbers) = (Vec::new(), 0);
     for kind in shisen_app::schema::FileKind::ALL {
-        walk(&kind.schema(), &format!("{kind:?}"), &mut problems, &mut numbers);
+        walk(
+            &kind.schema(),
+            &format!("{kind:?}"),
+            &mut problems,
+            &mut numbers,
+        );
     }
-    assert!(numbers > 300, "only {numbers} numbers found: is the walk reading the schema?");
-    assert!(problems.is_empty(), "{} problems:\n{}", problems.len(), problems.join("\n"));
+    assert!(
+        numbers > 300,
+        "only {numbers} numbers found: is the walk reading the schema?"
+    );
+    assert!(
+        problems.is_empty(),
+        "{} problems:\n{}",
+        problems.len(),
+        problems.join("\n")
+    );
 }

@@ -23,7 +23,7 @@ def test_a_scene_loads_and_round_trips():
 
 
 def test_a_bad_scene_names_file_line_column_and_field():
-    text = "Scene(duration: 2.0, timeline: [(at: 0.5, do: Punch(hand: Left, speed: -3.0))])"
+    text = "Scene(duration: 2.0, timeline: [(at: 0.5, do: Punch(hand: Left, target: Head, speed: -3.0))])"
     with pytest.raises(shisen.SceneError) as e:
         shisen.Scene.from_str(text, "bad.ron")
     err = e.value

@@ -77,11 +77,12 @@ pub enum Action {
         /// Destination `(x, y, z)`, world m; each coordinate within +-100 m.
         #[schemars(with = "[f64; 3]", inner(range(min = -100.0, max = 100.0)))]
         to: DVec3,
-        /// Duration of the move, s. At least 0.05 s: a minimum-jerk path
-        /// peaks at 1.875 times its mean speed, so half a metre in 0.05 s
-        /// already peaks near 19 m/s, twice the fastest punches' 9-10 m/s;
-        /// shorter moves would be teleports. At most a day.
-        #[schemars(range(min = 0.05, max = 86_400.0))]
+        /// Duration of the move, s: one step (0.001 s) to a day. Short
+        /// moves are how a controller steers a part a little each control
+        /// period (the Python environment moves the gloves every 20 ms);
+        /// the distance, and so the speed, depends on where the part is
+        /// when the move starts, which the scene does not know.
+        #[schemars(range(min = 0.001, max = 86_400.0))]
         duration: f64,
     },
     /// Throw a punch with one of the opponent's gloves at the VH (its head,
