@@ -27,6 +27,9 @@ use super::tables::Emotion;
 use super::timing::Speed;
 use shisen_gaze::util::ron::LoadError;
 
+/// Longest step of a script, s: a day, the longest run a scene may have.
+pub const MAX_STEP_S: f64 = 86_400.0;
+
 /// One timed emotion change of a script.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ScriptStep {
@@ -137,12 +140,15 @@ pub fn parse_script(text: &str, file: &Path) -> Result<Vec<ScriptStep>, LoadErro
             .1
             .parse()
             .ok()
-            .filter(|d: &f64| d.is_finite() && *d > 0.0)
+            .filter(|d: &f64| d.is_finite() && *d > 0.0 && *d <= MAX_STEP_S)
             .ok_or_else(|| {
                 err(
                     dur_f.0,
                     "duration",
-                    format!("must be a number of seconds > 0, got `{}`", dur_f.1),
+                    format!(
+                        "must be a number of seconds > 0 and at most {MAX_STEP_S} (a day), got `{}`",
+                        dur_f.1
+                    ),
                 )
             })?;
         let speed = speed_f
@@ -220,6 +226,7 @@ mod tests {
         let cases = [
             ("neutral 1 1\nglee 2 1\n", 2, 1, "emotion"),
             ("neutral 1 1\n\n  anger -2 1\n", 3, 9, "duration"),
+            ("neutral 1e300 1\n", 1, 9, "duration"),
             ("anger 2 4", 1, 9, "speed"),
             ("anger 2 x", 1, 9, "speed"),
             ("# c\n  anger 2\n", 2, 3, "-"),
