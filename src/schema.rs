@@ -11,22 +11,22 @@ use std::collections::{BTreeSet, HashSet};
 use std::fmt::Write as _;
 
 use serde_json::{Map, Value};
-use shisen::util::schema::schema_of;
+use shisen::util::schema::{num, schema_of};
 
-/// The kinds of input file.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// The kinds of input file (also `shisen schema KIND`'s values).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum FileKind {
-    /// Scene files.
+    /// Scene files (`shisen run`, `test`, the window's `--scene`).
     Scene,
-    /// Study files.
+    /// Study files (`shisen study`).
     Study,
-    /// Gains files.
+    /// Gains files (a scene's `gains_file`, `tune --gains`).
     Gains,
-    /// Muscle databases.
+    /// Muscle databases (a scene's `vh.face.database`).
     Muscles,
-    /// Landmarks of an imported head.
+    /// Landmark files of an imported head (`vh.face.landmarks`).
     Landmarks,
-    /// Bindings of the window's controls.
+    /// Bindings files (the window's `--bindings`).
     Bindings,
 }
 
@@ -213,17 +213,6 @@ fn text(s: &Value, key: &str) -> String {
         .replace('|', "\\|")
 }
 
-fn number(v: &Value) -> String {
-    if v.is_u64() || v.is_i64() {
-        return v.to_string();
-    }
-    match v.as_f64() {
-        Some(x) if x.fract() == 0.0 && x.abs() < 1e15 => format!("{x:.0}"),
-        Some(x) => format!("{x}"),
-        None => v.to_string(),
-    }
-}
-
 impl Doc<'_> {
     fn resolve<'b>(&'b self, s: &'b Value) -> &'b Value {
         match s.get("$ref").and_then(Value::as_str) {
@@ -319,18 +308,12 @@ impl Doc<'_> {
             .map_or(s, |a| a[0]);
         let lo = s
             .get("minimum")
-            .map(|v| format!("≥ {}", number(v)))
-            .or_else(|| {
-                s.get("exclusiveMinimum")
-                    .map(|v| format!("> {}", number(v)))
-            });
+            .map(|v| format!("≥ {}", num(v)))
+            .or_else(|| s.get("exclusiveMinimum").map(|v| format!("> {}", num(v))));
         let hi = s
             .get("maximum")
-            .map(|v| format!("≤ {}", number(v)))
-            .or_else(|| {
-                s.get("exclusiveMaximum")
-                    .map(|v| format!("< {}", number(v)))
-            });
+            .map(|v| format!("≤ {}", num(v)))
+            .or_else(|| s.get("exclusiveMaximum").map(|v| format!("< {}", num(v))));
         match (lo, hi) {
             (Some(a), Some(b)) => format!("{a}, {b}"),
             (Some(a), None) => a,

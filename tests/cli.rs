@@ -288,17 +288,15 @@ fn ctrl_c_stops_long_commands_within_a_second_with_130() {
         env!("CARGO_MANIFEST_DIR"),
         "/scenes/studies/attention_vs_attack.ron"
     );
-    let (code, took, err) = interrupt(
-        &[
-            "study",
-            study,
-            "--out",
-            csv.to_str().unwrap(),
-            "--jobs",
-            "1",
-        ],
-        3 * second,
-    );
+    let args = [
+        "study",
+        study,
+        "--out",
+        csv.to_str().unwrap(),
+        "--jobs",
+        "1",
+    ];
+    let (code, took, err) = interrupt(&args, 3 * second);
     assert_eq!(code, 130, "study: {err}");
     assert!(took < 2 * second, "study took {took:?} to stop");
     let text = std::fs::read_to_string(&csv).unwrap();
@@ -310,17 +308,7 @@ fn ctrl_c_stops_long_commands_within_a_second_with_130() {
         "a row cut short:\n{text}"
     );
     // Resuming accepts the file (and is interrupted again).
-    let (code, _, err) = interrupt(
-        &[
-            "study",
-            study,
-            "--out",
-            csv.to_str().unwrap(),
-            "--jobs",
-            "1",
-        ],
-        second,
-    );
+    let (code, _, err) = interrupt(&args, second);
     assert_eq!(code, 130, "resumed study: {err}");
     let _ = std::fs::remove_dir_all(dir);
 }

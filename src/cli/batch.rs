@@ -14,13 +14,9 @@ use shisen::tools::table::{self, ResultsFile, Shard};
 
 use crate::run::Interrupted;
 
-/// Threads for `--jobs` (default: every core).
-pub fn jobs(jobs: Option<usize>) -> Result<usize> {
-    match jobs {
-        Some(0) => bail!("--jobs: must be at least 1"),
-        Some(n) => Ok(n),
-        None => Ok(std::thread::available_parallelism().map_or(1, |n| n.get())),
-    }
+/// Threads for `--jobs` (the option is 1-256; default: every core).
+pub fn jobs(jobs: Option<usize>) -> usize {
+    jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
 }
 
 /// Run every scene of `paths`; exit 0 if all hold, 1 if an expectation
@@ -98,12 +94,15 @@ pub fn test_cmd(
 
 /// Run a study (or this shard of it) into `out`, resuming what is there.
 pub fn study_cmd(study: &Path, out: &Path, jobs: usize, shard: Shard) -> Result<()> {
-    let mut plan = Outputs::new().input(study).file("--out", out);
-    if let Some(base) = s_base(study) {
-        plan = plan.input(&base);
+    let s = LoadedStudy::load(study)?;
+    let mut plan = Outputs::new()
+        .input(study)
+        .input(Path::new(&s.base.source))
+        .file("--out", out);
+    for f in s.base.files() {
+        plan = plan.input(&f);
     }
     plan.check()?;
-    let s = LoadedStudy::load(study)?;
     let results = ResultsFile::open(out, &s.settings(shard), &s.header())?;
     let resumed = (0..s.runs.len())
         .filter(|&k| shard.contains(k) && results.has(k))
@@ -171,10 +170,4 @@ fn show(paths: &[PathBuf]) -> String {
         .map(|p| p.display().to_string())
         .collect::<Vec<_>>()
         .join(", ")
-}
-
-/// The base scene a study file names, if it can be read (for the output
-/// check; the study's own loading reports what is wrong with it).
-fn s_base(study: &Path) -> Option<PathBuf> {
-    LoadedStudy::base_path(study)
 }

@@ -258,7 +258,7 @@ pub enum Command {
     Schema {
         /// Which file kind.
         #[arg(value_enum)]
-        file: Option<SchemaFile>,
+        file: Option<shisen_app::schema::FileKind>,
         /// The reference of every file kind as Markdown instead.
         #[arg(long, conflicts_with = "file")]
         markdown: bool,
@@ -463,23 +463,6 @@ impl Cli {
         .into_iter()
         .find_map(|(set, name)| set.then_some(name))
     }
-}
-
-/// The input file kinds `shisen schema` describes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum SchemaFile {
-    /// Scene files (`shisen run`, `test`, the window's `--scene`).
-    Scene,
-    /// Study files (`shisen study`).
-    Study,
-    /// Gains files (a scene's `gains_file`, `tune --gains`).
-    Gains,
-    /// Muscle databases (a scene's `vh.face.database`).
-    Muscles,
-    /// Landmark files of an imported head (`vh.face.landmarks`).
-    Landmarks,
-    /// Bindings files (the window's `--bindings`).
-    Bindings,
 }
 
 /// `--profile` values.

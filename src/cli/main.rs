@@ -211,15 +211,19 @@ fn main() -> ExitCode {
             junit,
             out,
             shard,
-        }) => {
-            exit(jobs(j).and_then(|j| test_cmd(&paths, j, shard, junit.as_deref(), out.as_deref())))
-        }
+        }) => exit(test_cmd(
+            &paths,
+            jobs(j),
+            shard,
+            junit.as_deref(),
+            out.as_deref(),
+        )),
         Some(Command::Study {
             study,
             out,
             jobs: j,
             shard,
-        }) => report(jobs(j).and_then(|j| study_cmd(&study, &out, j, shard))),
+        }) => report(study_cmd(&study, &out, jobs(j), shard)),
         Some(Command::Merge { out, inputs }) => report(merge_cmd(&inputs, &out)),
         Some(Command::Face { command }) => report(face_cmd(command)),
         Some(Command::ExportMjcf { out }) => report(export_mjcf(&out)),
@@ -276,20 +280,13 @@ fn export_mjcf(out: &std::path::Path) -> Result<()> {
 }
 
 /// `shisen schema`: an input file kind's JSON Schema, or the reference.
-fn schema_cmd(file: Option<SchemaFile>, markdown: bool) -> Result<()> {
+fn schema_cmd(file: Option<shisen_app::schema::FileKind>, markdown: bool) -> Result<()> {
     use shisen_app::schema::{FileKind, reference, schema_json};
     if markdown {
         print!("{}", reference());
         return Ok(());
     }
-    let kind = match file.unwrap_or(SchemaFile::Scene) {
-        SchemaFile::Scene => FileKind::Scene,
-        SchemaFile::Study => FileKind::Study,
-        SchemaFile::Gains => FileKind::Gains,
-        SchemaFile::Muscles => FileKind::Muscles,
-        SchemaFile::Landmarks => FileKind::Landmarks,
-        SchemaFile::Bindings => FileKind::Bindings,
-    };
+    let kind = file.unwrap_or(FileKind::Scene);
     println!("{}", schema_json(kind));
     Ok(())
 }

@@ -102,21 +102,27 @@ impl Locations {
     /// The first number written that is not finite: its dotted path and
     /// 1-based `(line, col)`.
     pub fn non_finite(&self) -> Option<(String, usize, usize)> {
-        self.non_finite.first().map(|(path, line, col)| {
-            let mut dotted = String::new();
-            for (s, _) in path {
-                if s.bytes().all(|b| b.is_ascii_digit()) {
-                    dotted.push_str(&format!("[{s}]"));
-                } else {
-                    if !dotted.is_empty() {
-                        dotted.push('.');
-                    }
-                    dotted.push_str(s);
-                }
-            }
-            (dotted, *line, *col)
-        })
+        self.non_finite
+            .first()
+            .map(|(path, line, col)| (dotted(path.iter().map(|(s, _)| s.as_str())), *line, *col))
     }
+}
+
+/// Segments written as a dotted path (`timeline[2].do.Punch.speed`), `-`
+/// for none.
+pub fn dotted<'a>(segments: impl IntoIterator<Item = &'a str>) -> String {
+    let mut out = String::new();
+    for s in segments {
+        if s.bytes().all(|b| b.is_ascii_digit()) {
+            out.push_str(&format!("[{s}]"));
+        } else {
+            if !out.is_empty() {
+                out.push('.');
+            }
+            out.push_str(s);
+        }
+    }
+    if out.is_empty() { "-".into() } else { out }
 }
 
 /// Shorthand for `Locations::scan(text).find(path)`.

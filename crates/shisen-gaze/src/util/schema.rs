@@ -17,7 +17,7 @@ use schemars::JsonSchema;
 use serde::Serialize;
 use serde_json::Value;
 
-use super::locate::Locations;
+use super::locate::{Locations, dotted, segments};
 use super::ron::LoadError;
 
 /// The JSON Schema (draft 2020-12) of `T`: doc comments as descriptions,
@@ -103,25 +103,12 @@ pub fn check<T: Serialize + JsonSchema>(
     }
 }
 
-/// A JSON pointer (`/timeline/2/do/Punch/speed`) as the dotted path the
-/// parser's messages use (`timeline[2].do.Punch.speed`).
-fn dotted(pointer: &str) -> String {
-    let mut out = String::new();
-    for s in super::locate::segments(pointer) {
-        if s.bytes().all(|b| b.is_ascii_digit()) {
-            out.push_str(&format!("[{s}]"));
-        } else {
-            if !out.is_empty() {
-                out.push('.');
-            }
-            out.push_str(&s);
-        }
+/// A number as a person writes it (`86400`, `0.5`, `1e300`, `1e-6`),
+/// for messages and the reference.
+pub fn num(v: &Value) -> String {
+    if v.is_u64() || v.is_i64() {
+        return v.to_string();
     }
-    if out.is_empty() { "-".into() } else { out }
-}
-
-/// A number as a person writes it (`86400`, `0.5`, `1e300`).
-fn num(v: &Value) -> String {
     match v.as_f64() {
         Some(x) if x.fract() == 0.0 && x.abs() < 1e15 => format!("{x:.0}"),
         Some(x) if x != 0.0 && (x.abs() < 1e-4 || x.abs() >= 1e15) => format!("{x:e}"),
@@ -132,7 +119,11 @@ fn num(v: &Value) -> String {
 
 fn collect(e: &jsonschema::ValidationError, out: &mut Vec<Violation>) {
     use jsonschema::error::ValidationErrorKind as K;
-    let field = dotted(e.instance_path().as_str());
+    let field = dotted(
+        segments(e.instance_path().as_str())
+            .iter()
+            .map(String::as_str),
+    );
     let message = match e.kind() {
         // An enum's variants (and an optional value's `null`) are
         // alternatives: report the errors of the one that names this

@@ -189,7 +189,7 @@ pub struct BodySpec {
     pub shape: PropShape,
     /// Initial position `(x, y, z)`, world m; each coordinate within +-100 m
     /// of the origin (the room is a few metres across).
-    #[schemars(with = "[f64; 3]", inner(range(min = -100.0, max = 100.0)))]
+    #[schemars(with = "[f64; 3]", inner(range(min = -shisen_gaze::util::check::MAX_POSITION, max = shisen_gaze::util::check::MAX_POSITION)))]
     pub position: DVec3,
     /// Initial velocity `(x, y, z)` of a dynamic prop, m/s (default 0).
     /// Each within +-50 m/s: the fastest thrown balls (a pitched baseball)

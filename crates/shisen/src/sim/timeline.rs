@@ -56,7 +56,10 @@ pub enum PunchTarget {
     Body,
     /// A world point `(x, y, z)`, m; each coordinate within +-100 m of
     /// the origin (the room is a few metres across).
-    Point(#[schemars(with = "[f64; 3]", inner(range(min = -100.0, max = 100.0)))] DVec3),
+    Point(
+        #[schemars(with = "[f64; 3]", inner(range(min = -shisen_gaze::util::check::MAX_POSITION, max = shisen_gaze::util::check::MAX_POSITION)))]
+         DVec3,
+    ),
 }
 
 /// Something that happens at a time in the scene.
@@ -75,7 +78,7 @@ pub enum Action {
         /// What moves.
         part: Part,
         /// Destination `(x, y, z)`, world m; each coordinate within +-100 m.
-        #[schemars(with = "[f64; 3]", inner(range(min = -100.0, max = 100.0)))]
+        #[schemars(with = "[f64; 3]", inner(range(min = -shisen_gaze::util::check::MAX_POSITION, max = shisen_gaze::util::check::MAX_POSITION)))]
         to: DVec3,
         /// Duration of the move, s: one step (0.001 s) to a day. Short
         /// moves are how a controller steers a part a little each control
@@ -156,7 +159,7 @@ pub enum Action {
     /// action planner's choice of target resumes after it).
     LookAt {
         /// The point `(x, y, z)`, world m; each coordinate within +-100 m.
-        #[schemars(with = "[f64; 3]", inner(range(min = -100.0, max = 100.0)))]
+        #[schemars(with = "[f64; 3]", inner(range(min = -shisen_gaze::util::check::MAX_POSITION, max = shisen_gaze::util::check::MAX_POSITION)))]
         point: DVec3,
         /// End of the override, s from the run's start (not before `at`;
         /// at most a day).
@@ -190,7 +193,7 @@ pub enum Action {
         part: Part,
         /// Centre of the circle `(x, y, z)`, world m; each coordinate
         /// within +-100 m.
-        #[schemars(with = "[f64; 3]", inner(range(min = -100.0, max = 100.0)))]
+        #[schemars(with = "[f64; 3]", inner(range(min = -shisen_gaze::util::check::MAX_POSITION, max = shisen_gaze::util::check::MAX_POSITION)))]
         centre: DVec3,
         /// Angular speed about +Y, deg/s (positive: toward the VH's left).
         /// -720 to 720 (two turns a second): far past what smooth pursuit

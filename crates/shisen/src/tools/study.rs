@@ -138,15 +138,6 @@ pub struct LoadedStudy {
 }
 
 impl LoadedStudy {
-    /// The base scene a study file names (resolved against its folder),
-    /// if the file reads as a study; for checking outputs against inputs
-    /// before anything runs.
-    pub fn base_path(path: &Path) -> Option<PathBuf> {
-        let text = read_text(path).ok()?;
-        let study: Study = parse_ron(&text, path).ok()?;
-        Some(path.parent().unwrap_or(Path::new(".")).join(study.scene))
-    }
-
     /// Load a study file and its base scene, and expand its runs.
     pub fn load(path: &Path) -> Result<LoadedStudy, LoadError> {
         let text = read_text(path)?;
