@@ -16,6 +16,7 @@ use shisen_gaze::behaviour::ActionKind;
 
 use super::bout::Look;
 use super::session::Session;
+use crate::render::Panel;
 
 const PANEL: Color32 = Color32::from_rgba_premultiplied(8, 10, 14, 200);
 const YOU: Color32 = Color32::from_rgb(90, 150, 255);
@@ -104,10 +105,23 @@ fn clock(secs: f64) -> String {
 
 /// The scoreboard over the view `rect`, of `sim`: the bout, or its replay
 /// (whose clock and statistics are its own; the bell's banners and the
-/// last blow are the live bout's, and are not shown over a replay).
-pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session, sim: &shisen::sim::Sim) {
+/// last blow are the live bout's, and are not shown over a replay). Its
+/// text is painted; its panels are returned, for the view's blit to lay
+/// under the text ([`crate::render::Blit`]: a software rasteriser fills
+/// them there for a fraction of egui's cost).
+pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session, sim: &shisen::sim::Sim) -> Vec<Panel> {
     let live = s.replay.is_none();
     let p = ui.painter_at(rect);
+    let ppp = ui.ctx().pixels_per_point();
+    let mut fills = Vec::new();
+    let mut fill = |r: Rect, radius: f32, color: Color32| {
+        fills.push(Panel {
+            min: [r.min.x * ppp, r.min.y * ppp],
+            max: [r.max.x * ppp, r.max.y * ppp],
+            radius: radius * ppp,
+            color: color.to_array(),
+        });
+    };
     let h = rect.height();
     let big = FontId::proportional((h / 15.0).clamp(22.0, 72.0));
     let mid = FontId::proportional((h / 30.0).clamp(15.0, 36.0));
@@ -129,7 +143,7 @@ pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session, sim: &shisen::sim::Sim
         top - vec2(w / 2.0, 0.0),
         vec2(w, big.size * 1.05 + mid.size * 1.3),
     );
-    p.rect_filled(box_, 6.0, PANEL);
+    fill(box_, 6.0, PANEL);
     p.text(
         box_.center_top() + vec2(0.0, mid.size * 0.15),
         Align2::CENTER_TOP,
@@ -145,7 +159,7 @@ pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session, sim: &shisen::sim::Sim
         Color32::WHITE,
     );
     // The fighters' punches, either side of the clock.
-    let side = |f: &FighterStats, name: &str, color: Color32, left: bool| {
+    let mut side = |f: &FighterStats, name: &str, color: Color32, left: bool| {
         let lines = [
             (name.to_string(), mid.clone(), color),
             (
@@ -173,7 +187,7 @@ pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session, sim: &shisen::sim::Sim
             Pos2::new(x, box_.min.y),
             vec2(width, mid.size * 2.6 + small.size * 1.4),
         );
-        p.rect_filled(r, 6.0, PANEL);
+        fill(r, 6.0, PANEL);
         let mut y = r.min.y + mid.size * 0.15;
         let align = if left {
             Align2::RIGHT_TOP
@@ -200,8 +214,8 @@ pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session, sim: &shisen::sim::Sim
         vh_box.left_bottom() + vec2(0.0, h * 0.008),
         vec2(vh_box.width(), (h / 90.0).max(6.0)),
     );
-    p.rect_filled(bar, 3.0, PANEL);
-    p.rect_filled(
+    fill(bar, 3.0, PANEL);
+    fill(
         Rect::from_min_size(bar.min, vec2(bar.width() * (1.0 - fatigue), bar.height())),
         3.0,
         Color32::from_rgb(80, 200, 120).lerp_to_gamma(VH, fatigue),
@@ -228,7 +242,7 @@ pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session, sim: &shisen::sim::Sim
         let at = rect.center() - vec2(0.0, h * 0.12);
         let galley = p.layout_no_wrap(text, font, GOLD);
         let r = Rect::from_center_size(at, galley.size() + vec2(40.0, 16.0));
-        p.rect_filled(r, 8.0, PANEL);
+        fill(r, 8.0, PANEL);
         p.galley(r.min + vec2(20.0, 8.0), galley, GOLD);
     }
     // The last blow, under the clock.
@@ -273,12 +287,13 @@ pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session, sim: &shisen::sim::Sim
         Color32::from_gray(210),
     );
     let at = rect.left_bottom() + vec2(h * 0.015, -h * 0.015 - keys.size().y);
-    p.rect_filled(
+    fill(
         Rect::from_min_size(at - vec2(6.0, 3.0), keys.size() + vec2(12.0, 6.0)),
         4.0,
         PANEL,
     );
     p.galley(at, keys, Color32::from_gray(210));
+    fills
 }
 
 fn part(name: &str) -> &str {

@@ -516,7 +516,8 @@ impl eframe::App for ShisenApp {
                     .as_ref()
                     .map_or(&self.session.sim, |r| &r.sim);
                 let rect = viewport.draw(ui, sim);
-                hud::scoreboard(ui, rect, &self.session, sim);
+                let panels = hud::scoreboard(ui, rect, &self.session, sim);
+                viewport.set_panels(rect, ctx.pixels_per_point(), &panels);
             });
         if self.bout_ui.menu {
             match hud::menu(&ctx, &mut self.bout_ui, &mut self.session) {

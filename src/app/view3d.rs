@@ -8,7 +8,7 @@ use eframe::egui_wgpu;
 use glam::{Vec2, Vec3};
 
 use crate::input::Pointer;
-use crate::render::{Blit, BlitBind, Camera, Frame, Overlays, Renderer, View};
+use crate::render::{Blit, BlitBind, Camera, Frame, Overlays, Panel, Renderer, View};
 
 use super::session::Session;
 use shisen::sim::Sim;
@@ -111,6 +111,14 @@ impl Viewport {
             last: None,
             scale,
         }
+    }
+
+    /// Lay the HUD's `panels` (window pixels) over the view drawn in
+    /// `rect` (points) at `pixels_per_point`, from this frame on.
+    pub fn set_panels(&self, rect: egui::Rect, pixels_per_point: f32, panels: &[Panel]) {
+        let px = |p: egui::Pos2| [p.x * pixels_per_point, p.y * pixels_per_point];
+        self.blit
+            .set_panels(self.renderer.queue(), [px(rect.min), px(rect.max)], panels);
     }
 
     /// Switch between first person and orbit.

@@ -1,6 +1,6 @@
 //! The wgpu renderer: draws a [`Frame`] into its own colour texture (4x
-//! MSAA resolved into an sRGB texture), which is read back for PNGs or shown
-//! by the window as an egui image. The same code path serves both.
+//! MSAA resolved into an sRGB texture), which is read back for PNGs or
+//! copied into the window by [`super::Blit`]. The same code path serves both.
 
 use std::collections::HashMap;
 use std::num::NonZeroU64;
@@ -146,139 +146,6 @@ impl Growable {
         self.capacity = size.next_power_of_two();
         self.buffer = Self::alloc(device, self.label, self.usage, self.capacity);
         true
-    }
-}
-
-/// Draws the renderer's last picture into another render pass (the
-/// window's), scaled to it with bilinear filtering (the window may render
-/// its view below its own resolution: `Viewport`'s render scale). Showing the picture as an egui image costs
-/// egui's textured, colour-converting shader on every window pixel: 20 ms
-/// a frame at 1280x720 on a software Vulkan, more than the scene itself.
-pub struct Blit {
-    pipeline: wgpu::RenderPipeline,
-    layout: wgpu::BindGroupLayout,
-    sampler: wgpu::Sampler,
-    /// The target decodes sRGB itself (so it is handed linear texels).
-    srgb_target: bool,
-}
-
-impl Blit {
-    /// A blit into passes on targets of `format`.
-    pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Blit {
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("shisen blit"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("blit.wgsl").into()),
-        });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("shisen blit"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
-            ],
-        });
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("shisen blit"),
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            ..Default::default()
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("shisen blit"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("shisen blit"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &shader,
-                entry_point: Some("vs_blit"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &shader,
-                entry_point: Some("fs_blit"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format,
-                    blend: None,
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        Blit {
-            pipeline,
-            layout,
-            sampler,
-            srgb_target: format.is_srgb(),
-        }
-    }
-
-    /// What `Blit::draw` needs to draw `renderer`'s last picture (none
-    /// before the first render).
-    pub fn bind(&self, renderer: &Renderer) -> Option<BlitBind> {
-        let target = renderer.target.as_ref()?;
-        let view = if self.srgb_target {
-            target.color_view.clone()
-        } else {
-            renderer.color_view_unorm()?
-        };
-        let group = renderer
-            .device
-            .create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("shisen blit"),
-                layout: &self.layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: wgpu::BindingResource::TextureView(&view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::Sampler(&self.sampler),
-                    },
-                ],
-            });
-        Some(BlitBind {
-            pipeline: self.pipeline.clone(),
-            group,
-        })
-    }
-}
-
-/// A bound blit, ready to draw into a pass (cheap to clone).
-#[derive(Clone)]
-pub struct BlitBind {
-    pipeline: wgpu::RenderPipeline,
-    group: wgpu::BindGroup,
-}
-
-impl BlitBind {
-    /// Cover the pass's viewport with the picture.
-    pub fn draw(&self, pass: &mut wgpu::RenderPass<'_>) {
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &self.group, &[]);
-        pass.draw(0..3, 0..1);
     }
 }
 
@@ -739,20 +606,19 @@ impl Renderer {
         });
     }
 
+    /// The queue the renderer submits to.
+    pub fn queue(&self) -> &wgpu::Queue {
+        &self.queue
+    }
+
+    /// The device the renderer draws with.
+    pub(super) fn device(&self) -> &wgpu::Device {
+        &self.device
+    }
+
     /// The resolved colour texture of the last render (sRGB).
     pub fn color_texture(&self) -> Option<&wgpu::Texture> {
         self.target.as_ref().map(|t| &t.color)
-    }
-
-    /// A view of the last render without sRGB decoding (what egui expects
-    /// of a native texture: its bytes are gamma-encoded already).
-    pub fn color_view_unorm(&self) -> Option<wgpu::TextureView> {
-        self.target.as_ref().map(|t| {
-            t.color.create_view(&wgpu::TextureViewDescriptor {
-                format: Some(COLOR_FORMAT_UNORM),
-                ..Default::default()
-            })
-        })
     }
 
     /// Upload this frame's vertices of a dynamic mesh; its buffers are

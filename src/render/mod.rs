@@ -9,6 +9,7 @@
 //! `shisen render`, the tests and the bench; the window shares its eframe
 //! device with the same renderer.
 
+mod blit;
 pub mod body;
 mod camera;
 mod draw;
@@ -18,10 +19,11 @@ pub mod geometry;
 mod gpu;
 mod ring;
 
+pub use blit::{Blit, BlitBind, MAX_PANELS, Panel};
 pub use camera::{Camera, View};
 pub use draw::{Draw, Label, LineVertex, Material, MeshKey};
 pub use frame::{Frame, Overlays, face_offset};
-pub use gpu::{Blit, BlitBind, COLOR_FORMAT, COLOR_FORMAT_UNORM, RenderError, Renderer};
+pub use gpu::{COLOR_FORMAT, COLOR_FORMAT_UNORM, RenderError, Renderer};
 
 use std::path::Path;
 
