@@ -55,10 +55,12 @@ pub struct RenderScale {
 impl RenderScale {
     /// The lowest scale (a quarter of the pixels).
     pub const MIN: f32 = 0.5;
-    /// Frames slower than this lower the scale, ms (60 fps).
-    pub const SLOW_MS: f32 = 16.7;
+    /// Frames slower than this on average lower the scale, ms: 67 fps,
+    /// so that the frame-to-frame spread of a software rasteriser on a
+    /// shared machine (about 10 %) keeps the median at 60 fps or more.
+    pub const SLOW_MS: f32 = 15.0;
     /// Frames faster than this raise it, ms.
-    pub const FAST_MS: f32 = 12.5;
+    pub const FAST_MS: f32 = 11.5;
     /// Frames averaged per adjustment.
     const EVERY: u32 = 15;
 
