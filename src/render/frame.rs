@@ -8,6 +8,7 @@ use rapier3d::prelude::TypedShape;
 use shisen::physics::body::{BodyPlan, OpponentPart, Seg};
 use shisen::physics::world::Owner;
 use shisen::sim::Sim;
+use shisen_face::appearance::LipShape;
 use shisen_face::mesh::compute_normals;
 use shisen_gaze::util::math::{dir_from_yaw_pitch, yaw_pitch_of};
 
@@ -64,6 +65,8 @@ pub struct Frame {
     /// What the top light's shadow map covers: a sphere (centre, radius)
     /// round both fighters and the shadows they cast.
     pub shadow_focus: (Vec3, f32),
+    /// Where the face's lips are, for their border drawn per pixel.
+    pub lips: LipShape,
 }
 
 /// Which part of your body is drawn.
@@ -312,6 +315,7 @@ impl Frame {
             lines: Vec::new(),
             labels: Vec::new(),
             shadow_focus: shadow_focus(w.position(Seg::Head), you_head),
+            lips: LipShape::of(&sim.model().face.mesh.landmarks),
         };
         frame.add_overlays(sim, overlays);
         frame
@@ -435,9 +439,11 @@ fn face_vertices(sim: &Sim) -> Vec<Vertex> {
         .zip(&face.paint.colours)
         .zip(&face.paint.regions)
         .zip(&wrinkles)
-        .map(|((((p, n), c), r), w)| Vertex {
+        .zip(&mesh.positions)
+        .map(|(((((p, n), c), r), w), rest)| Vertex {
             wrinkle: *w,
             paint: *r,
+            rest: [rest.x, rest.y],
             ..Vertex::coloured(*p, *n, *c)
         })
         .collect()

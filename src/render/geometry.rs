@@ -24,6 +24,10 @@ pub struct Vertex {
     /// signed distance inside one border (in its soft half-widths) and the
     /// RGB colour there; unused elsewhere.
     pub paint: [f32; 4],
+    /// The face's rest position (x, y in its own frame), from which the
+    /// lips' border is drawn per pixel ([`shisen_face::appearance::LipShape`]);
+    /// zero elsewhere.
+    pub rest: [f32; 2],
 }
 
 impl Vertex {
@@ -40,6 +44,7 @@ impl Vertex {
             color,
             wrinkle: [0.0; 4],
             paint: [0.0; 4],
+            rest: [0.0; 2],
         }
     }
 }

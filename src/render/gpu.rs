@@ -73,6 +73,9 @@ struct Globals {
     /// The face's lips, brows and hair, and the inside of the mouth
     /// (linear RGB).
     face_regions: [[f32; 4]; 4],
+    /// The lips' shape (`LipShape`): half-width, mouth line, upper and
+    /// lower border at the middle; the depth in front of which it is lip.
+    lips: [[f32; 4]; 2],
     /// World to the top light's clip space (its shadow map).
     light_view_proj: [[f32; 4]; 4],
     /// The top light's direction of travel.
@@ -360,7 +363,7 @@ impl Renderer {
             bind_group_layouts: &[Some(&globals_layout), Some(&instance_layout)],
             immediate_size: 0,
         });
-        let mesh_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x4, 3 => Float32x4, 4 => Float32x4];
+        let mesh_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x4, 3 => Float32x4, 4 => Float32x4, 5 => Float32x2];
         let line_attrs = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x4];
         let pipeline = |vs: &str,
                         fs: &str,
@@ -693,6 +696,13 @@ impl Renderer {
             key_dir: key.extend(0.0).to_array(),
             fill_dir: fill.extend(0.0).to_array(),
             floor_light: [floor_light, 0.0, 0.0, 0.0],
+            lips: {
+                let l = &frame.lips;
+                [
+                    [l.half_w, l.mouth_y, l.top, l.bottom],
+                    [l.front_z, 0.0, 0.0, 0.0],
+                ]
+            },
             face_regions: {
                 let s = &shisen_face::appearance::FaceStyle::DEFAULT;
                 [s.lips, s.brow, s.hair, s.inside].map(|c| [c[0], c[1], c[2], 1.0])
@@ -936,15 +946,27 @@ fn shadow_frustum((centre, radius): (Vec3, f32), size: u32) -> (Mat4, f32) {
 /// prepended as WGSL constants: one home for the iris's size, which the
 /// face's lid tests measure against.
 fn shader_source() -> String {
+    use shisen_face::appearance::{LIP_BOW, LIP_DIP, LIP_SOFT, LIP_TAPER, MOUTH_EDGE};
     use shisen_gaze::anatomy::eye;
     let cos = |deg: f64| deg.to_radians().cos();
     format!(
         "const PUPIL_COS: f32 = {:.6};\nconst LIMBUS_COS: f32 = {:.6};\nconst IRIS_COS: f32 = {:.6};\n\
-         const MOUTH_INSIDE_LIMIT: f32 = {:.6};\n{}",
+         const MOUTH_INSIDE_LIMIT: f32 = {:.6};\nconst LIP_TAPER: f32 = {:.6};\n\
+         const LIP_BOW: vec3<f32> = vec3<f32>({:.6}, {:.6}, {:.6});\n\
+         const LIP_DIP: vec2<f32> = vec2<f32>({:.6}, {:.6});\nconst LIP_SOFT: f32 = {:.6};\n\
+         const MOUTH_EDGE: f32 = {:.6};\n{}",
         cos(eye::PUPIL_DEG),
         cos(eye::LIMBUS_DEG),
         cos(eye::IRIS_DEG),
         shisen_face::appearance::MOUTH_INSIDE_LIMIT,
+        LIP_TAPER,
+        LIP_BOW[0],
+        LIP_BOW[1],
+        LIP_BOW[2],
+        LIP_DIP[0],
+        LIP_DIP[1],
+        LIP_SOFT,
+        MOUTH_EDGE,
         include_str!("shader.wgsl")
     )
 }

@@ -12,6 +12,10 @@ struct Globals {
     floor_light: vec4<f32>,
     // The face's lips, brows and hair.
     face_regions: array<vec4<f32>, 4>,
+    // The lips' shape (face/appearance.rs LipShape): half-width, mouth
+    // line, upper and lower border at the middle; x of the second: the
+    // depth in front of which it is lip.
+    lips: array<vec4<f32>, 2>,
     // World to the top light's clip space.
     light_view_proj: mat4x4<f32>,
     // The top light's direction of travel.
@@ -112,6 +116,8 @@ struct PaintedOut {
     // The point in the mesh's own frame (the face's: x right, y up, z out
     // of the face), for the skin's and the hairs' fine detail.
     @location(5) local: vec3<f32>,
+    // Face: the point's rest position (x, y), for the lips' border.
+    @location(6) rest: vec2<f32>,
 };
 
 @vertex
@@ -121,6 +127,7 @@ fn vs_painted(
     @location(2) color: vec4<f32>,
     @location(3) wrinkle: vec4<f32>,
     @location(4) paint: vec4<f32>,
+    @location(5) rest: vec2<f32>,
 ) -> PaintedOut {
     var o: PaintedOut;
     let w = inst.model * vec4<f32>(pos, 1.0);
@@ -131,6 +138,7 @@ fn vs_painted(
     o.wrinkle = wrinkle;
     o.paint = paint;
     o.local = pos;
+    o.rest = rest;
     return o;
 }
 
@@ -282,6 +290,24 @@ fn fs_body(v: PaintedOut) -> @location(0) vec4<f32> {
     return vec4<f32>(skin(base, n, view_dir, 1.0, SKIN_TOP * top_light(v.world, n, 0.0)), 1.0);
 }
 
+// Signed distance of a point of the face (rest x, y; depth z) inside the
+// lips' colour, m: LipShape::inside in face/appearance.rs, whose numbers
+// are prepended to this file.
+fn lips_inside(rest: vec2<f32>, z: f32) -> f32 {
+    let half_w = g.lips[0].x;
+    let mouth_y = g.lips[0].y;
+    let u = min(abs(rest.x) / half_w, 1.0);
+    let taper = pow(max(1.0 - u * u, 0.0), LIP_TAPER);
+    let b = (u - LIP_BOW.y) / LIP_BOW.z;
+    let d = u / LIP_DIP.y;
+    let bow = 1.0 + LIP_BOW.x * exp(-b * b) - LIP_DIP.x * exp(-d * d);
+    let top = mouth_y + g.lips[0].z * taper * bow;
+    let bottom = mouth_y - g.lips[0].w * taper;
+    let band = min(min(top - rest.y, rest.y - bottom), min(half_w - abs(rest.x), z - g.lips[1].x));
+    let to_line = length(vec2<f32>(max(abs(rest.x) - half_w, 0.0), rest.y - mouth_y));
+    return max(band, MOUTH_EDGE - to_line);
+}
+
 // The face: skin with its painted borders and expression wrinkles.
 @fragment
 fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
@@ -302,8 +328,10 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
     var base = inst.color.rgb * v.color.rgb;
     // Painted borders (face/appearance.rs): each region covers
     // where its interpolated signed distance is positive, blended
-    // over its soft border or one pixel, whichever is wider.
-    let inside = vec3<f32>(v.paint.x, v.paint.w - abs(v.paint.y), v.paint.z);
+    // over its soft border or one pixel, whichever is wider. The lips'
+    // is computed here from the rest position, so their border is a
+    // smooth curve (the Cupid's bow too) however coarse the mesh.
+    let inside = vec3<f32>(lips_inside(v.rest, v.local.z) / LIP_SOFT, v.paint.w - abs(v.paint.y), v.paint.z);
     let aa = max(fwidth(inside), vec3<f32>(1.0));
     let cover = smoothstep(-aa, aa, inside);
     base = mix(base, g.face_regions[0].rgb, cover.x);

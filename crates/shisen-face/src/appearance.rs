@@ -91,7 +91,7 @@ pub const MOUTH_INSIDE_LIMIT: f32 = -MOUTH_INSIDE_REACH / SOFT[0];
 /// the opening's edge is lip all round, even at the corners, where the
 /// vermilion's band narrows to nothing but a wide-open mouth stretches
 /// the skin beside it into the opening.
-const MOUTH_EDGE: f32 = 0.0025;
+pub const MOUTH_EDGE: f32 = 0.0025;
 
 /// Distance from `p` to the nearest of `points`.
 fn distance(p: Vec3, points: &[Vec3]) -> f32 {
@@ -194,22 +194,84 @@ fn brow(p: Vec3, l: &Landmarks, min_half: f32) -> (f32, f32) {
     (height, half)
 }
 
-/// Signed distance of the point inside the lips' vermilion, m: a band
-/// above and below the mouth line, widest at the middle (with a Cupid's
-/// bow) and closing at the corners.
+/// The lips' taper toward the corners: the band's height goes as
+/// `(1 - u^2)^LIP_TAPER` over the fraction `u` of the half-width.
+pub const LIP_TAPER: f32 = 0.4;
+/// The Cupid's bow: a rise of the upper border by this fraction, centred
+/// this far out (fraction of the half-width), this wide.
+pub const LIP_BOW: [f32; 3] = [0.18, 0.28, 0.12];
+/// The philtrum's dip in the upper border at the midline: depth, width
+/// (fractions).
+pub const LIP_DIP: [f32; 2] = [0.15, 0.08];
+/// The soft half-width of the vermilion border, m (the lips' entry of
+/// the regions' soft borders).
+pub const LIP_SOFT: f32 = SOFT[0];
+
+/// Where the lips' vermilion lies on a head, from its landmarks (m, the
+/// head's frame): the mouth's half-width and line, how far the upper and
+/// lower borders stand from that line at the middle, and the depth in
+/// front of which the face is (the head's back at the same height is not
+/// lip). The renderer draws the border per pixel from the same numbers
+/// (`fs_face` in `render/shader.wgsl`, which mirrors [`LipShape::band`]
+/// and [`LipShape::inside`]), so it is a smooth curve at any mesh
+/// resolution; the per-vertex regions serve everything else.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LipShape {
+    /// Half the mouth's width.
+    pub half_w: f32,
+    /// The mouth line's height.
+    pub mouth_y: f32,
+    /// The upper border's height above the line at the middle.
+    pub top: f32,
+    /// The lower border's depth below the line at the middle.
+    pub bottom: f32,
+    /// Only points in front of this depth are lip.
+    pub front_z: f32,
+}
+
+impl LipShape {
+    /// The lips of a head with landmarks `l`.
+    pub fn of(l: &Landmarks) -> LipShape {
+        let mouth_y = l.mouth_centre.y;
+        LipShape {
+            half_w: l.mouth_corner.x,
+            mouth_y,
+            top: l.upper_lip.y - mouth_y + 0.0025,
+            bottom: mouth_y - l.lower_lip.y + 0.0035,
+            front_z: l.mouth_corner.z - 0.012,
+        }
+    }
+
+    /// Signed distance of the point inside the vermilion's band, m: above
+    /// and below the mouth line, widest at the middle (with a Cupid's bow)
+    /// and closing at the corners.
+    pub fn band(&self, p: Vec3) -> f32 {
+        let u = (p.x / self.half_w).abs().min(1.0);
+        let taper = (1.0 - u * u).powf(LIP_TAPER);
+        let [bow_a, bow_u, bow_w] = LIP_BOW;
+        let [dip_a, dip_w] = LIP_DIP;
+        let bow = 1.0 + bow_a * (-((u - bow_u) / bow_w).powi(2)).exp()
+            - dip_a * (-(u / dip_w).powi(2)).exp();
+        let top = self.mouth_y + self.top * taper * bow;
+        let bottom = self.mouth_y - self.bottom * taper;
+        (top - p.y)
+            .min(p.y - bottom)
+            .min(self.half_w - p.x.abs())
+            .min(p.z - self.front_z)
+    }
+
+    /// Signed distance inside the lips' colour, m: the band, and within
+    /// [`MOUTH_EDGE`] of the mouth's opening (taken as the mouth line
+    /// between the corners) all round.
+    pub fn inside(&self, p: Vec3) -> f32 {
+        let to_line = Vec2::new((p.x.abs() - self.half_w).max(0.0), p.y - self.mouth_y).length();
+        self.band(p).max(MOUTH_EDGE - to_line)
+    }
+}
+
+/// Signed distance of the point inside the lips' vermilion band, m.
 fn lips(p: Vec3, l: &Landmarks) -> f32 {
-    let half_w = l.mouth_corner.x;
-    let u = (p.x / half_w).abs().min(1.0);
-    let taper = (1.0 - u * u).powf(0.4);
-    let bow =
-        1.0 + 0.18 * (-((u - 0.28) / 0.12).powi(2)).exp() - 0.15 * (-(u / 0.08).powi(2)).exp();
-    let mouth_y = l.mouth_centre.y;
-    let top = mouth_y + (l.upper_lip.y - mouth_y + 0.0025) * taper * bow;
-    let bottom = mouth_y - (mouth_y - l.lower_lip.y + 0.0035) * taper;
-    (top - p.y)
-        .min(p.y - bottom)
-        .min(half_w - p.x.abs())
-        .min(p.z - l.mouth_corner.z + 0.012)
+    LipShape::of(l).band(p)
 }
 
 /// How dark the lash line is at the point (0..1): within a millimetre or
