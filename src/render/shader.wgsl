@@ -308,6 +308,56 @@ fn lips_inside(rest: vec2<f32>, z: f32) -> f32 {
     return max(band, MOUTH_EDGE - to_line);
 }
 
+// The buckled skin's profile over one line (docs/model/face.md W5). A
+// gentle squeeze buckles the skin into W2's sinusoid, height cos(t) of
+// the phase angle t; a stronger one localises into folds (the
+// wrinkle-to-fold transition of a compressed sheet on a soft
+// foundation, Pocivavsek et al. 2008, Science 320:912): rounded ridges
+// between sharp creases, height 2 |cos(t / 2)| - 1, and some lines
+// deeper than their neighbours. `fold` (0-1) is how far the squeeze has
+// gone from one to the other: it grows with W2's peak slope up to
+// FOLD_SLOPE (our choice).
+const FOLD_SLOPE: f32 = 1.0;
+// How much deeper or shallower a line may be than the mean in full folds
+// (our choice: a raised forehead shows two or three strong lines among
+// fainter ones).
+const FOLD_SPREAD: f32 = 0.8;
+// Shadow at a furrow's floor: the sinusoid's broad one, the fold's
+// crease (our choices; their means over a line, which a far-away face
+// keeps, are both 0.12: a fold is a thinner, darker line, not a lighter
+// brow).
+const FURROW_WAVE: f32 = 0.33;
+const FURROW_CREASE: f32 = 0.75;
+
+fn fold_of(slope: f32) -> f32 {
+    return clamp(slope / FOLD_SLOPE, 0.0, 1.0);
+}
+
+// The normal's tilt along the axis at phase `p` (in lines), per unit of
+// W2's peak slope: minus the profile's derivative, peaking at 1 for both
+// profiles; a line's depth varies in folds (by its index).
+fn fold_tilt(p: f32, fold: f32, family: f32) -> f32 {
+    let t = 6.2831853 * fract(p);
+    let wave = sin(t);
+    let crease = select(-1.0, 1.0, t < 3.1415927) * sin(0.5 * t);
+    let depth = 1.0 + fold * FOLD_SPREAD * (hash2(vec2<f32>(floor(p), family)) - 0.5);
+    return mix(wave, crease, fold) * depth;
+}
+
+// The furrow's shadow at phase `p`: the sinusoid's ((1 - cos t) / 2)^2,
+// the crease's (1 - |cos(t / 2)|)^3.
+fn fold_furrow(p: f32, fold: f32) -> f32 {
+    let t = 6.2831853 * fract(p);
+    let s = 0.5 * (1.0 - cos(t));
+    let d = 1.0 - abs(cos(0.5 * t));
+    return mix(FURROW_WAVE * s * s, FURROW_CREASE * d * d * d, fold);
+}
+
+// Its mean over a line (0.375 and 0.166 of the two profiles' floors).
+fn fold_furrow_mean(fold: f32) -> f32 {
+    return mix(FURROW_WAVE * 0.375, FURROW_CREASE * 0.166, fold);
+}
+
 // The face: skin with its painted borders and expression wrinkles.
 @fragment
 fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
@@ -350,16 +400,16 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
     let contrast = mix(0.2, 0.45, head);
     base = mix(base, g.face_regions[1].rgb, cover.y * (1.0 - contrast + contrast * hairs));
     base = mix(base, g.face_regions[2].rgb, cover.z);
-    // Expression wrinkles (docs/model/face.md W1-W3): two families of
-    // lines, across the face's vertical axis (phase y / L) and across
-    // its horizontal one (x / L), each of height A cos(2 pi phase), so
-    // the normal tilts by slope sin(2 pi phase) along the axis; their
-    // furrows are shadowed. Where a wavelength covers under about three
-    // pixels the lines would alias: they fade into their mean
-    // brightness instead, the furrows' mean shadow times the mean
-    // cosine of the tilted normals (about 1 / sqrt(1 + s^2 / 2)), so a
-    // wrinkled brow stays as dark far away as close up (the filtering
-    // rule of Toksvig 2005, "Mipmapping normal maps").
+    // Expression wrinkles (docs/model/face.md W1-W3, and W5 for the
+    // profile): two families of lines, across the face's vertical axis
+    // (phase y / L) and across its horizontal one (x / L), each a buckled
+    // profile whose peak slope is W2's (`fold_tilt`), so the normal tilts
+    // along the axis; their furrows are shadowed. Where a wavelength
+    // covers under about three pixels the lines would alias: they fade
+    // into their mean brightness instead, the furrows' mean shadow times
+    // the mean cosine of the tilted normals (about 1 / sqrt(1 + s^2 / 2)),
+    // so a wrinkled brow stays as dark far away as close up (the
+    // filtering rule of Toksvig 2005, "Mipmapping normal maps").
     var furrow = 0.0;
     var tilt = 1.0;
     if (v.wrinkle.x + v.wrinkle.y > 1e-4) {
@@ -369,19 +419,22 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
         let dy = normalize(ay - n * dot(ay, n));
         let rx = clamp((0.33 - fwidth(v.wrinkle.z)) * 6.0, 0.0, 1.0);
         let ry = clamp((0.33 - fwidth(v.wrinkle.w)) * 6.0, 0.0, 1.0);
-        let px = 6.2831853 * v.wrinkle.z;
-        let py = 6.2831853 * v.wrinkle.w;
-        n = normalize(n + dx * (v.wrinkle.x * sin(px) * rx) + dy * (v.wrinkle.y * sin(py) * ry));
-        let vx = 0.25 * (1.0 - cos(px)) * (1.0 - cos(px));
-        let vy = 0.25 * (1.0 - cos(py)) * (1.0 - cos(py));
+        // The lines wander a little (our choice: a fifth of their spacing
+        // over 1.5 cm along them), as lines on a face do.
+        let wx = v.wrinkle.z + 0.2 * (value_noise(v.local.y / 0.015) - 0.5);
+        let wy = v.wrinkle.w + 0.2 * (value_noise(v.local.x / 0.015 + 11.0) - 0.5);
+        let fx = fold_of(v.wrinkle.x);
+        let fy = fold_of(v.wrinkle.y);
+        n = normalize(n + dx * (v.wrinkle.x * fold_tilt(wx, fx, 1.0) * rx)
+            + dy * (v.wrinkle.y * fold_tilt(wy, fy, 2.0) * ry));
         tilt = mix(inverseSqrt(1.0 + 0.5 * v.wrinkle.x * v.wrinkle.x), 1.0, rx)
             * mix(inverseSqrt(1.0 + 0.5 * v.wrinkle.y * v.wrinkle.y), 1.0, ry);
         // Where both families fold (the glabella under procerus and
         // corrugator) the deeper furrow's shadow holds: crossing folds
         // do not shade the skin twice.
         furrow = max(
-            min(v.wrinkle.x, 1.0) * mix(0.375, vx, rx),
-            min(v.wrinkle.y, 1.0) * mix(0.375, vy, ry),
+            min(v.wrinkle.x, 1.0) * mix(fold_furrow_mean(fx), fold_furrow(wx, fx), rx),
+            min(v.wrinkle.y, 1.0) * mix(fold_furrow_mean(fy), fold_furrow(wy, fy), ry),
         );
     }
     // Pores, finer on the forehead than over the nose and cheeks (our
@@ -392,7 +445,7 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
     let cell = select(0.0008, 0.0005, v.local.y > 0.02);
     n = select(n, pores(n, v.local.xy, ax, ay, cell), bare > 0.5);
     let top = SKIN_TOP * top_light(v.world, normalize(v.normal), 0.0);
-    return vec4<f32>(skin(base, n, view_dir, (1.0 - 0.33 * furrow) * tilt, top), 1.0);
+    return vec4<f32>(skin(base, n, view_dir, (1.0 - furrow) * tilt, top), 1.0);
 }
 
 // One entry point a material: a software rasteriser runs every
