@@ -561,14 +561,24 @@ fn fs_skin(v: VOut) -> @location(0) vec4<f32> {
 // cone about the strand; fine strokes along the strands break it up.
 @fragment
 fn fs_scalp(v: VOut) -> @location(0) vec4<f32> {
-    // The hairline: the shell ends where the height above it (the vertex
-    // colour's alpha, m) is under a wobble of up to 2 mm, so it is broken
-    // by stray hairs and tufts rather than ruled.
-    // Value noise along the hairline, in cells of 4 mm and 1.3 mm: tufts
-    // and single strays, not a regular saw.
-    let x = v.local.x + 0.3 * v.local.z;
-    let wobble = 0.0013 * value_noise(x / 0.004) + 0.0007 * value_noise(x / 0.0013 + 7.0);
-    if (v.color.a + wobble < 0.0) {
+    // The hairline is hairs, not a cut: the shell's strands lie in lanes
+    // round the head's front-to-back axis (`around`), and within
+    // HAIRLINE_FRINGE above the hairline (the height above it is the
+    // vertex colour's alpha, m) each lane ends at its own height, most
+    // near the line, some as low as a millimetre under it (the square of
+    // a uniform draw), and only its strands' cores are
+    // drawn: single hairs thinning out onto the skin (our choices, after
+    // blind judges called a wobbling cut "jagged" and "torn"). Where the
+    // strands are finer than a pixel the lanes' ends alone break the line.
+    let around = 0.09 * atan2(v.local.x, v.local.y + 0.02);
+    let lanes = around / 0.0005;
+    let fw = fwidth(lanes);
+    let lane = floor(lanes);
+    let r = hash2(vec2<f32>(lane, 9.0));
+    let ends = HAIRLINE_FRINGE * r * r - 0.001;
+    let core = abs(fract(lanes) - 0.5) < 0.35 || fw > 0.6;
+    let h = v.color.a;
+    if (h < ends || (h < HAIRLINE_FRINGE && !core)) {
         discard;
     }
     let view_dir = normalize(g.camera.xyz - v.world);
@@ -581,13 +591,15 @@ fn fs_scalp(v: VOut) -> @location(0) vec4<f32> {
     let s16 = pow4(pow4(sqrt(max(1.0 - th * th, 0.0))));
     let s64 = pow4(s16);
     let diffuse = key_fill_top(v.world, n);
-    // Strands lie in lanes round the head's front-to-back axis.
-    let around = 0.09 * atan2(v.local.x, v.local.y + 0.02);
     let hairs = strokes(vec2<f32>(around, v.local.z), vec2<f32>(0.0, 1.0), 0.0005, 0.008, 0.6);
     let base = inst.color.rgb * v.color.rgb * (0.75 + 0.5 * hairs);
-    let spec = (0.10 * s64 + 0.05 * s16) * (0.6 + 0.4 * hairs) * max(dot(n, key) + 0.3, 0.0);
+    let spec = (0.06 * s64 + 0.035 * s16) * (0.3 + 0.7 * hairs) * max(dot(n, key) + 0.3, 0.0);
     return vec4<f32>(base * (0.25 + diffuse) + vec3<f32>(spec), 1.0);
 }
+
+// The band above the hairline in which the hair thins out into single
+// hairs, m (our choice: a hairline thins out over a few millimetres).
+const HAIRLINE_FRINGE: f32 = 0.004;
 
 // Lamps, and scenery lit once on the CPU: the colour as it is.
 @fragment
