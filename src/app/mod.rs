@@ -390,7 +390,8 @@ impl ShisenApp {
 /// threshold their pages went back to the kernel (`madvise`) at each free
 /// and were faulted in and zeroed again at the next frame: about 3 ms of a
 /// 20 ms frame at 1280x720 on two cores, measured with the malloc
-/// tunables. The window keeps at most a few tens of MB more.
+/// tunables. Each of the allocator's heaps may now keep up to 256 MB it
+/// no longer uses (what the driver frees it soon allocates again).
 fn keep_freed_memory() {
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
     // SAFETY: mallopt takes the allocator's lock and only sets two

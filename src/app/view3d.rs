@@ -100,8 +100,12 @@ impl Viewport {
     pub fn new(rs: &egui_wgpu::RenderState, view: View) -> Self {
         let renderer = Renderer::for_window(&rs.adapter, &rs.device, &rs.queue);
         // A software rasteriser starts below full resolution (about 60 fps
-        // at 1280x720 on two cores) and finds its level from there.
-        let scale = RenderScale::new(if renderer.software() { 0.7 } else { 1.0 });
+        // at 1280x720 on two cores) and finds its level from there. A GPU
+        // renders at full resolution: the scale follows the interval
+        // between frames, which a display's vsync holds at its refresh
+        // period whatever the work, and would pull it down for nothing.
+        let mut scale = RenderScale::new(if renderer.software() { 0.7 } else { 1.0 });
+        scale.auto = renderer.software();
         Viewport {
             renderer,
             blit: Blit::new(&rs.device, rs.target_format),
@@ -118,7 +122,13 @@ impl Viewport {
     /// Lay the HUD's `panels` (window pixels) over the view drawn in
     /// `rect` (points) at `pixels_per_point`, from this frame on.
     pub fn set_panels(&self, rect: egui::Rect, pixels_per_point: f32, panels: &[Panel]) {
-        let px = |p: egui::Pos2| [p.x * pixels_per_point, p.y * pixels_per_point];
+        // Whole pixels, as egui rounds the paint callback's viewport.
+        let px = |p: egui::Pos2| {
+            [
+                (p.x * pixels_per_point).round(),
+                (p.y * pixels_per_point).round(),
+            ]
+        };
         self.blit
             .set_panels(self.renderer.queue(), [px(rect.min), px(rect.max)], panels);
     }

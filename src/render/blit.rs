@@ -10,14 +10,15 @@
 //! The HUD's dark panels are drawn here too, a quad each with a shader
 //! that only blends a flat colour, not by egui: on a software rasteriser
 //! egui's shader costs about 45 ns a pixel (a texture fetch with sRGB
-//! decoding and three `pow`s), so the scoreboard's four panels (80,000
+//! decoding and three `pow`s), so the scoreboard's panels (about 80,000
 //! pixels) took 5 ms of CPU a frame and 2.5 ms of the frame time at
 //! 1280x720 on two cores (lavapipe). egui still draws the text on top.
 
 use super::gpu::Renderer;
 
 /// At most this many panels a frame (more are dropped: the scoreboard
-/// uses six).
+/// uses up to seven). The shader's array is this long (prepended to
+/// `blit.wgsl`).
 pub const MAX_PANELS: usize = 12;
 
 /// A flat rectangle with rounded corners laid over the picture, in the
@@ -64,7 +65,13 @@ impl Blit {
     pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Blit {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("shisen blit"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("blit.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(
+                format!(
+                    "const MAX_PANELS: u32 = {MAX_PANELS}u;\n{}",
+                    include_str!("blit.wgsl")
+                )
+                .into(),
+            ),
         });
         let entry = |binding, ty| wgpu::BindGroupLayoutEntry {
             binding,

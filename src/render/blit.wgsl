@@ -20,7 +20,7 @@ struct Panel {
 struct Panels {
     view: vec4<f32>,
     count: vec4<u32>,
-    items: array<Panel, 12>,
+    items: array<Panel, MAX_PANELS>,
 };
 
 @group(0) @binding(2) var<uniform> panels: Panels;
@@ -75,8 +75,10 @@ fn vs_panel(@builtin(vertex_index) i: u32, @builtin(instance_index) k: u32) -> P
 // over the picture), from the signed distance to its rounded outline.
 @fragment
 fn fs_panel(v: PanelOut) -> @location(0) vec4<f32> {
-    let r = v.radius;
-    let d = abs(v.px - 0.5 * (v.rect.xy + v.rect.zw)) - 0.5 * (v.rect.zw - v.rect.xy) + r;
+    let half = 0.5 * (v.rect.zw - v.rect.xy);
+    // As egui does, a corner is at most half the shorter side.
+    let r = min(v.radius, min(half.x, half.y));
+    let d = abs(v.px - 0.5 * (v.rect.xy + v.rect.zw)) - half + r;
     let dist = length(max(d, vec2<f32>(0.0))) + min(max(d.x, d.y), 0.0) - r;
     return v.color * clamp(0.5 - dist, 0.0, 1.0);
 }

@@ -290,14 +290,15 @@ fn fs_body(v: PaintedOut) -> @location(0) vec4<f32> {
     return vec4<f32>(skin(base, n, view_dir, 1.0, SKIN_TOP * top_light(v.world, n, 0.0)), 1.0);
 }
 
-// Signed distance of a point of the face (rest x, y; depth z) inside the
+// Signed distance of a point of the face (rest x, y; its present depth
+// z, within a few millimetres of its rest depth on the lips) inside the
 // lips' colour, m: LipShape::inside in face/appearance.rs, whose numbers
 // are prepended to this file.
 fn lips_inside(rest: vec2<f32>, z: f32) -> f32 {
     let half_w = g.lips[0].x;
     let mouth_y = g.lips[0].y;
     let u = min(abs(rest.x) / half_w, 1.0);
-    let taper = pow(max(1.0 - u * u, 0.0), LIP_TAPER);
+    let taper = pow(max(1.0 - u * u, 1e-6), LIP_TAPER);
     let b = (u - LIP_BOW.y) / LIP_BOW.z;
     let d = u / LIP_DIP.y;
     let bow = 1.0 + LIP_BOW.x * exp(-b * b) - LIP_DIP.x * exp(-d * d);
@@ -305,7 +306,7 @@ fn lips_inside(rest: vec2<f32>, z: f32) -> f32 {
     let bottom = mouth_y - g.lips[0].w * taper;
     let band = min(min(top - rest.y, rest.y - bottom), min(half_w - abs(rest.x), z - g.lips[1].x));
     let to_line = length(vec2<f32>(max(abs(rest.x) - half_w, 0.0), rest.y - mouth_y));
-    return max(band, MOUTH_EDGE - to_line);
+    return max(band, min(MOUTH_EDGE - to_line, z - g.lips[1].x));
 }
 
 // The buckled skin's profile over one line (docs/model/face.md W5). A
@@ -564,13 +565,16 @@ fn fs_scalp(v: VOut) -> @location(0) vec4<f32> {
     // The hairline is hairs, not a cut: the shell's strands lie in lanes
     // round the head's front-to-back axis (`around`), and within
     // HAIRLINE_FRINGE above the hairline (the height above it is the
-    // vertex colour's alpha, m) each lane ends at its own height, most
-    // near the line, some as low as a millimetre under it (the square of
-    // a uniform draw), and only its strands' cores are
-    // drawn: single hairs thinning out onto the skin (our choices, after
-    // blind judges called a wobbling cut "jagged" and "torn"). Where the
-    // strands are finer than a pixel the lanes' ends alone break the line.
+    // vertex colour's alpha, m) each lane ends at its own height, from a
+    // millimetre under the line to 3 mm over it, more of them low (the
+    // square of a uniform draw), and only its strands' cores are drawn:
+    // single hairs thinning out onto the skin (our choices, after blind
+    // judges called a wobbling cut "jagged" and "torn"). Where the
+    // strands are finer than a pixel the lanes' ends alone break the
+    // line. (The strokes' and the lanes' footprints are taken before any
+    // pixel is discarded: a derivative needs all four of a quad.)
     let around = 0.09 * atan2(v.local.x, v.local.y + 0.02);
+    let hairs = strokes(vec2<f32>(around, v.local.z), vec2<f32>(0.0, 1.0), 0.0005, 0.008, 0.6);
     let lanes = around / 0.0005;
     let fw = fwidth(lanes);
     let lane = floor(lanes);
@@ -591,7 +595,6 @@ fn fs_scalp(v: VOut) -> @location(0) vec4<f32> {
     let s16 = pow4(pow4(sqrt(max(1.0 - th * th, 0.0))));
     let s64 = pow4(s16);
     let diffuse = key_fill_top(v.world, n);
-    let hairs = strokes(vec2<f32>(around, v.local.z), vec2<f32>(0.0, 1.0), 0.0005, 0.008, 0.6);
     let base = inst.color.rgb * v.color.rgb * (0.75 + 0.5 * hairs);
     let spec = (0.06 * s64 + 0.035 * s16) * (0.3 + 0.7 * hairs) * max(dot(n, key) + 0.3, 0.0);
     return vec4<f32>(base * (0.25 + diffuse) + vec3<f32>(spec), 1.0);

@@ -261,11 +261,15 @@ impl LipShape {
     }
 
     /// Signed distance inside the lips' colour, m: the band, and within
-    /// [`MOUTH_EDGE`] of the mouth's opening (taken as the mouth line
-    /// between the corners) all round.
+    /// [`MOUTH_EDGE`] of the mouth's opening all round, on the front of
+    /// the face. The opening is taken as the mouth line between the
+    /// corners (the renderer's per-pixel border); the per-vertex regions
+    /// ([`paint`]) measure to the lip rims' vertices instead, which lie on
+    /// that line at rest on a generated head.
     pub fn inside(&self, p: Vec3) -> f32 {
         let to_line = Vec2::new((p.x.abs() - self.half_w).max(0.0), p.y - self.mouth_y).length();
-        self.band(p).max(MOUTH_EDGE - to_line)
+        self.band(p)
+            .max((MOUTH_EDGE - to_line).min(p.z - self.front_z))
     }
 }
 
