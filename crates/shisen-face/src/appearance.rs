@@ -367,6 +367,34 @@ mod tests {
     use super::*;
     use crate::mesh::{MeshParams, mirror};
 
+    /// The lips' colour as the renderer draws it per pixel: on both lips
+    /// and along the opening's edge to the corners, not beyond the
+    /// corners, not on the chin or under the nose, and not on the back of
+    /// the head at the mouth's height (the opening's edge term is for the
+    /// face's front only).
+    #[test]
+    fn lip_shape_covers_the_lips_and_only_the_front() {
+        let mesh = HeadMesh::generate(MeshParams { rows: 32 });
+        let l = &mesh.landmarks;
+        let lips = LipShape::of(l);
+        let z = l.mouth_corner.z;
+        for p in [l.upper_lip, l.lower_lip] {
+            assert!(lips.inside(p) > 0.0, "{p}");
+        }
+        // The opening's edge, at the middle and near a corner.
+        let edge = Vec3::new(0.9 * lips.half_w, lips.mouth_y, z + 0.002);
+        assert!(lips.inside(edge) > 0.0, "{edge}");
+        assert!(lips.inside(l.mouth_centre + Vec3::Z * 0.01) > 0.0);
+        for p in [
+            Vec3::new(lips.half_w + 0.006, lips.mouth_y, z),
+            l.chin,
+            Vec3::new(0.0, lips.mouth_y + lips.top + 0.006, z + 0.01),
+            Vec3::new(0.0, lips.mouth_y, dims::Z_C - 0.07),
+        ] {
+            assert!(lips.inside(p) < 0.0, "{p} is not lip");
+        }
+    }
+
     /// Each region lands where its landmark says, and only there: each
     /// landmark is inside its region (and no other); the nose tip, the
     /// chin and the forehead are in none. And `paint` gives every vertex
