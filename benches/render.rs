@@ -51,7 +51,7 @@ fn frame(c: &mut Criterion) {
         b.iter(|| {
             let f = Frame::build(&sim, View::First, Overlays::default(), 16.0 / 9.0);
             gpu.renderer
-                .render(&f, &sim.model().face.mesh.triangles, SIZE);
+                .render(&f, &sim.model().face.mesh, SIZE);
             gpu.renderer.wait();
         })
     });

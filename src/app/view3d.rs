@@ -228,8 +228,7 @@ impl Viewport {
         }
         self.build_ms = started.elapsed().as_secs_f32() * 1e3;
         let started = std::time::Instant::now();
-        self.renderer
-            .render(&frame, &sim.model().face.mesh.triangles, px);
+        self.renderer.render(&frame, &sim.model().face.mesh, px);
         self.render_ms = started.elapsed().as_secs_f32() * 1e3;
         if let Some(bind) = self.blit.bind(&self.renderer) {
             ui.painter().add(egui_wgpu::Callback::new_paint_callback(

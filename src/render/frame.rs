@@ -112,12 +112,15 @@ impl Looks {
         }
     }
 
-    /// Triangles of a body mesh key.
-    pub fn indices(&self, key: MeshKey, part: AvatarPart) -> &[u32] {
+    /// Triangles of a body mesh key: fine, and coarse
+    /// ([`BodyMesh::coarse_indices`]).
+    pub fn indices(&self, key: MeshKey, part: AvatarPart) -> (&[u32], &[u32]) {
         match (key, part) {
-            (MeshKey::Avatar, AvatarPart::Arms) => self.you.arm_indices(),
-            (MeshKey::Avatar, AvatarPart::Whole) => &self.you.indices,
-            _ => &self.vh.indices,
+            (MeshKey::Avatar, AvatarPart::Arms) => {
+                (self.you.arm_indices(), self.you.coarse_arm_indices())
+            }
+            (MeshKey::Avatar, AvatarPart::Whole) => (&self.you.indices, &self.you.coarse_indices),
+            _ => (&self.vh.indices, &self.vh.coarse_indices),
         }
     }
 }

@@ -8,11 +8,14 @@ use std::num::NonZeroU64;
 use glam::{Mat3, Mat4, Vec3};
 use wgpu::util::DeviceExt;
 
+use shisen_face::mesh::HeadMesh;
+
 use super::draw::{
     FILL_DIR, KEY_DIR, LineVertex, Material, MeshKey, TOP_DIR, TOP_LIGHT, key_fill_light,
 };
 use super::frame::{AvatarPart, Frame, Looks};
 use super::geometry::{self, MeshData, Vertex};
+use super::lod::{self, Lod, Sight};
 
 /// Rendering errors.
 #[derive(Debug, thiserror::Error)]
@@ -98,6 +101,9 @@ struct GpuMesh {
     vertices: wgpu::Buffer,
     indices: wgpu::Buffer,
     count: u32,
+    /// A coarse level of detail over the same vertices (its indices and
+    /// their count), for the shadow pass.
+    coarse: Option<(wgpu::Buffer, u32)>,
 }
 
 struct Target {
@@ -528,7 +534,7 @@ impl Renderer {
         r
     }
 
-    fn make_mesh(&self, data: &MeshData, usage: wgpu::BufferUsages) -> GpuMesh {
+    fn make_mesh(&self, data: &MeshData, usage: wgpu::BufferUsages, coarse: &[u32]) -> GpuMesh {
         let vertices = self
             .device
             .create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -543,15 +549,26 @@ impl Renderer {
                 contents: bytemuck::cast_slice(&data.indices),
                 usage: wgpu::BufferUsages::INDEX,
             });
+        let coarse = (!coarse.is_empty()).then(|| {
+            let buffer = self
+                .device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("shisen coarse indices"),
+                    contents: bytemuck::cast_slice(coarse),
+                    usage: wgpu::BufferUsages::INDEX,
+                });
+            (buffer, coarse.len() as u32)
+        });
         GpuMesh {
             vertices,
             indices,
             count: data.indices.len() as u32,
+            coarse,
         }
     }
 
     fn upload(&mut self, key: MeshKey, data: &MeshData) {
-        let mesh = self.make_mesh(data, wgpu::BufferUsages::empty());
+        let mesh = self.make_mesh(data, wgpu::BufferUsages::empty(), &[]);
         self.meshes.insert(key, mesh);
     }
 
@@ -627,9 +644,13 @@ impl Renderer {
     /// Upload this frame's vertices of a dynamic mesh; its buffers are
     /// rebuilt (with `indices`) only when the vertex or index count
     /// changes.
-    fn dynamic_mesh(&mut self, key: MeshKey, vertices: &[Vertex], indices: &[u32]) {
+    fn dynamic_mesh(&mut self, key: MeshKey, vertices: &[Vertex], indices: &[u32], coarse: &[u32]) {
         match self.dynamic.get(&key) {
-            Some((m, n)) if *n == vertices.len() && m.count as usize == indices.len() => {
+            Some((m, n))
+                if *n == vertices.len()
+                    && m.count as usize == indices.len()
+                    && m.coarse.as_ref().map_or(0, |c| c.1 as usize) == coarse.len() =>
+            {
                 self.queue
                     .write_buffer(&m.vertices, 0, bytemuck::cast_slice(vertices));
             }
@@ -638,16 +659,16 @@ impl Renderer {
                     vertices: vertices.to_vec(),
                     indices: indices.to_vec(),
                 };
-                let mesh = self.make_mesh(&data, wgpu::BufferUsages::COPY_DST);
+                let mesh = self.make_mesh(&data, wgpu::BufferUsages::COPY_DST, coarse);
                 self.dynamic.insert(key, (mesh, vertices.len()));
             }
         }
     }
 
-    /// Draw `frame` at `size` pixels; `face_triangles` index
-    /// [`Frame::face`]. Submits the work; the result is in
-    /// [`Renderer::color_texture`].
-    pub fn render(&mut self, frame: &Frame, face_triangles: &[[u32; 3]], size: (u32, u32)) {
+    /// Draw `frame` at `size` pixels; `face`'s triangles (and its coarse
+    /// shell, for the shadow) index [`Frame::face`]. Submits the work; the
+    /// result is in [`Renderer::color_texture`].
+    pub fn render(&mut self, frame: &Frame, face: &HeadMesh, size: (u32, u32)) {
         self.ensure_target(size);
         for d in &frame.draws {
             if let MeshKey::Capsule {
@@ -660,23 +681,38 @@ impl Renderer {
                 self.upload(d.mesh, &data);
             }
         }
-        self.dynamic_mesh(MeshKey::Face, &frame.face, face_triangles.as_flattened());
+        self.dynamic_mesh(
+            MeshKey::Face,
+            &frame.face,
+            face.triangles.as_flattened(),
+            face.coarse.as_flattened(),
+        );
         let lashes: Vec<u32> = (0..frame.lashes.len() as u32).collect();
-        self.dynamic_mesh(MeshKey::Lashes, &frame.lashes, &lashes);
-        self.dynamic_mesh(MeshKey::HairShell, &frame.hair.0, &frame.hair.1);
+        self.dynamic_mesh(MeshKey::Lashes, &frame.lashes, &lashes, &[]);
+        self.dynamic_mesh(MeshKey::HairShell, &frame.hair.0, &frame.hair.1, &[]);
         let looks = Looks::of(&frame.plan);
-        self.dynamic_mesh(
-            MeshKey::Body,
-            &frame.body,
-            looks.indices(MeshKey::Body, AvatarPart::Whole),
-        );
-        self.dynamic_mesh(
-            MeshKey::Avatar,
-            &frame.avatar,
-            looks.indices(MeshKey::Avatar, frame.avatar_indices),
-        );
-
+        for (key, vertices, part) in [
+            (MeshKey::Body, &frame.body, AvatarPart::Whole),
+            (MeshKey::Avatar, &frame.avatar, frame.avatar_indices),
+        ] {
+            let (fine, coarse) = looks.indices(key, part);
+            self.dynamic_mesh(key, vertices, fine, coarse);
+        }
+        // The whole bodies by pieces: those in view, each at its level of
+        // detail (your arms in the first-person view are near: all fine).
         let cam = &frame.camera;
+        let sight = Sight::new(cam.view_proj(), cam.eye, cam.fov_y, size.1);
+        let mut body_runs = vec![(
+            MeshKey::Body,
+            lod::runs(looks.vh.pieces(), &frame.body, &sight),
+        )];
+        if frame.avatar_indices == AvatarPart::Whole {
+            body_runs.push((
+                MeshKey::Avatar,
+                lod::runs(looks.you.pieces(), &frame.avatar, &sight),
+            ));
+        }
+
         let (key, fill) = (KEY_DIR.normalize(), FILL_DIR.normalize());
         // The shader's plain lighting on the floor's upward normal.
         let floor_light = key_fill_light(Vec3::Y);
@@ -768,7 +804,7 @@ impl Renderer {
                 if !d.material.casts(d.mesh) {
                     continue;
                 }
-                let Some(mesh) = self.mesh_of(d.mesh) else {
+                let Some((vertices, indices, count)) = self.caster(d.mesh) else {
                     continue;
                 };
                 pass.set_bind_group(
@@ -776,9 +812,9 @@ impl Renderer {
                     &self.instance_bind,
                     &[(i as u64 * INSTANCE_STRIDE) as u32],
                 );
-                pass.set_vertex_buffer(0, mesh.vertices.slice(..));
-                pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-                pass.draw_indexed(0..mesh.count, 0, 0..1);
+                pass.set_vertex_buffer(0, vertices.slice(..));
+                pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..count, 0, 0..1);
             }
         }
         {
@@ -823,8 +859,22 @@ impl Renderer {
                     &[(i as u64 * INSTANCE_STRIDE) as u32],
                 );
                 pass.set_vertex_buffer(0, mesh.vertices.slice(..));
-                pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-                pass.draw_indexed(0..mesh.count, 0, 0..1);
+                let runs = body_runs.iter().find(|(k, _)| *k == d.mesh);
+                let Some((_, runs)) = runs else {
+                    pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                    pass.draw_indexed(0..mesh.count, 0, 0..1);
+                    continue;
+                };
+                for run in runs {
+                    let indices = match (run.lod, &mesh.coarse) {
+                        (Lod::Fine, _) => &mesh.indices,
+                        (Lod::Coarse, Some((coarse, _))) => coarse,
+                        // A body always has its coarse list.
+                        (Lod::Coarse, None) => continue,
+                    };
+                    pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+                    pass.draw_indexed(run.range.clone(), 0, 0..1);
+                }
             }
             if !frame.lines.is_empty() {
                 pass.set_pipeline(&self.line_pipeline);
@@ -849,6 +899,24 @@ impl Renderer {
             key => self.meshes.get(&key),
         }
         .filter(|m| m.count > 0)
+    }
+
+    /// What a draw of `key` casts its shadow with: the mesh's coarse level
+    /// of detail where it has one (the bodies, the head), the coarse sphere
+    /// for a sphere, else the mesh (vertices, indices, index count). A
+    /// shadow map's texel (2-4 mm) is coarser than the fine meshes' detail,
+    /// and on a software rasteriser every triangle costs, however small.
+    fn caster(&self, key: MeshKey) -> Option<(&wgpu::Buffer, &wgpu::Buffer, u32)> {
+        let key = if key == MeshKey::Sphere {
+            MeshKey::Blob
+        } else {
+            key
+        };
+        let mesh = self.mesh_of(key)?;
+        Some(match &mesh.coarse {
+            Some((indices, count)) => (&mesh.vertices, indices, *count),
+            None => (&mesh.vertices, &mesh.indices, mesh.count),
+        })
     }
 
     /// Block until the GPU has finished the submitted work.
@@ -946,6 +1014,7 @@ fn shadow_frustum((centre, radius): (Vec3, f32), size: u32) -> (Mat4, f32) {
 /// prepended as WGSL constants: one home for the iris's size, which the
 /// face's lid tests measure against.
 fn shader_source() -> String {
+    use super::body::{VEST_ARMHOLE, VEST_HEM, VEST_NECK};
     use shisen_face::appearance::{LIP_BOW, LIP_DIP, LIP_SOFT, LIP_TAPER, MOUTH_EDGE};
     use shisen_gaze::anatomy::eye;
     let cos = |deg: f64| deg.to_radians().cos();
@@ -954,7 +1023,10 @@ fn shader_source() -> String {
          const MOUTH_INSIDE_LIMIT: f32 = {:.6};\nconst LIP_TAPER: f32 = {:.6};\n\
          const LIP_BOW: vec3<f32> = vec3<f32>({:.6}, {:.6}, {:.6});\n\
          const LIP_DIP: vec2<f32> = vec2<f32>({:.6}, {:.6});\nconst LIP_SOFT: f32 = {:.6};\n\
-         const MOUTH_EDGE: f32 = {:.6};\n{}",
+         const MOUTH_EDGE: f32 = {:.6};\n\
+         const VEST_ARMHOLE: vec4<f32> = vec4<f32>({:.6}, {:.6}, {:.6}, {:.6});\n\
+         const VEST_NECK: array<f32, 6> = array<f32, 6>({:.6}, {:.6}, {:.6}, {:.6}, {:.6}, {:.6});\n\
+         const VEST_HEM: vec2<f32> = vec2<f32>({:.6}, {:.6});\n{}",
         cos(eye::PUPIL_DEG),
         cos(eye::LIMBUS_DEG),
         cos(eye::IRIS_DEG),
@@ -967,6 +1039,18 @@ fn shader_source() -> String {
         LIP_DIP[1],
         LIP_SOFT,
         MOUTH_EDGE,
+        VEST_ARMHOLE[0],
+        VEST_ARMHOLE[1],
+        VEST_ARMHOLE[2],
+        VEST_ARMHOLE[3],
+        VEST_NECK[0],
+        VEST_NECK[1],
+        VEST_NECK[2],
+        VEST_NECK[3],
+        VEST_NECK[4],
+        VEST_NECK[5],
+        VEST_HEM[0],
+        VEST_HEM[1],
         include_str!("shader.wgsl")
     )
 }

@@ -17,6 +17,7 @@ mod face_parts;
 mod frame;
 pub mod geometry;
 mod gpu;
+mod lod;
 mod ring;
 
 pub use blit::{Blit, BlitBind, MAX_PANELS, Panel};
@@ -95,8 +96,7 @@ impl Headless {
             // What the user sees: the view knocked by a blow taken.
             frame.camera.knock(sim, 1.0);
         }
-        self.renderer
-            .render(&frame, &sim.model().face.mesh.triangles, size);
+        self.renderer.render(&frame, &sim.model().face.mesh, size);
         self.renderer.read_rgba()
     }
 }

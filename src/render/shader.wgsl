@@ -285,9 +285,22 @@ fn skin(base: vec3<f32>, n: vec3<f32>, view_dir: vec3<f32>, shade: f32, top: f32
 fn fs_body(v: PaintedOut) -> @location(0) vec4<f32> {
     let view_dir = normalize(g.camera.xyz - v.world);
     let n = normalize(v.normal);
-    let aa = max(fwidth(v.paint.x), 1.0);
-    let base = mix(inst.color.rgb * v.color.rgb, v.paint.yzw, smoothstep(-aa, aa, v.paint.x));
+    let inside = vest_inside(vec3<f32>(v.rest, v.paint.x));
+    let aa = max(fwidth(inside), VEST_HEM.y);
+    let base = mix(inst.color.rgb * v.color.rgb, v.paint.yzw, smoothstep(-aa, aa, inside));
     return vec4<f32>(skin(base, n, view_dir, 1.0, SKIN_TOP * top_light(v.world, n, 0.0)), 1.0);
+}
+
+// Signed distance of a body's point inside the vest's openings (bare
+// skin), m, from its position `d` in the torso's design frame: the
+// armholes and a neckline scooped deeper at the front (VEST_* in
+// render/body/shape.rs, prepended to this file). Points off the torso lie
+// far outside.
+fn vest_inside(d: vec3<f32>) -> f32 {
+    let arm = (vec2<f32>(abs(d.x), d.y) - VEST_ARMHOLE.xy) / VEST_ARMHOLE.zw;
+    let depth = VEST_NECK[2] + VEST_NECK[3] * smoothstep(VEST_NECK[4], VEST_NECK[5], d.z);
+    let neck = vec2<f32>(d.x / VEST_NECK[1], (d.y - VEST_NECK[0]) / depth);
+    return (1.0 - sqrt(min(dot(arm, arm), dot(neck, neck)))) * VEST_HEM.x;
 }
 
 // Signed distance of a point of the face (rest x, y; its present depth

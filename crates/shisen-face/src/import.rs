@@ -248,6 +248,7 @@ pub fn head_from_parts(
         normals: compute_normals(&positions, &triangles),
         lid_zone: lid_zone(&positions, landmarks.eye_centre),
         positions,
+        coarse: triangles.clone(),
         triangles,
         landmarks,
         rims: Rims::default(),

@@ -136,6 +136,12 @@ pub struct HeadMesh {
     pub normals: Vec<Vec3>,
     /// Counter-clockwise (outward) triangles.
     pub triangles: Vec<[u32; 3]>,
+    /// A coarse level of detail over the same vertices: the head's closed
+    /// shell (its openings spanned) through every third row and column of
+    /// the grid, about a ninth of the triangles; for what needs the head's
+    /// shape but not its detail, such as casting a shadow. An imported
+    /// mesh's own triangles.
+    pub coarse: Vec<[u32; 3]>,
     /// Landmarks.
     pub landmarks: Landmarks,
     /// Opening rims.
@@ -488,6 +494,7 @@ impl HeadMesh {
             }
         }
         let normals = compute_normals(&positions, &triangles);
+        let coarse = coarse_shell(rows, cols, 3, idx);
 
         let landmarks = landmarks(&positions, &rims);
         let lid_zone = lid_zone(&positions, landmarks.eye_centre);
@@ -495,11 +502,42 @@ impl HeadMesh {
             positions,
             normals,
             triangles,
+            coarse,
             landmarks,
             rims,
             lid_zone,
         }
     }
+}
+
+/// The grid's closed shell through every `step`-th row and column (the
+/// last row and the column wrap always): outward triangles between the
+/// grid vertices `idx(row, column)` (the upper rim of each opening), poles
+/// fanned.
+fn coarse_shell(
+    rows: usize,
+    cols: usize,
+    step: usize,
+    idx: impl Fn(usize, usize) -> u32,
+) -> Vec<[u32; 3]> {
+    let mut rs: Vec<usize> = (0..rows).step_by(step).collect();
+    rs.push(rows);
+    let mut js: Vec<usize> = (0..cols).step_by(step).collect();
+    js.push(cols);
+    let mut out = Vec::new();
+    for r in rs.windows(2) {
+        for j in js.windows(2) {
+            let (a, b) = (idx(r[0], j[0]), idx(r[0], j[1]));
+            let (c, d) = (idx(r[1], j[0]), idx(r[1], j[1]));
+            if a != b {
+                out.push([a, c, b]);
+            }
+            if c != d {
+                out.push([b, c, d]);
+            }
+        }
+    }
+    out
 }
 
 /// Vertices of each eye's lid zone (0 left, 1 right): in front of the
@@ -626,6 +664,44 @@ mod tests {
                 m.triangles
                     .iter()
                     .all(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+            );
+        }
+    }
+
+    #[test]
+    fn coarse_shell_is_closed_and_holds_the_head() {
+        let volume = |tris: &[[u32; 3]], p: &[Vec3]| -> f32 {
+            tris.iter()
+                .map(|t| {
+                    let [a, b, c] = t.map(|i| p[i as usize]);
+                    a.dot(b.cross(c)) / 6.0
+                })
+                .sum()
+        };
+        for rows in [32, 48, 61] {
+            let m = HeadMesh::generate(MeshParams { rows });
+            // Closed and consistently oriented: every edge used once each way.
+            for (e, uses) in edge_use(&m.coarse) {
+                assert_eq!(uses, (1, 1), "rows {rows}: edge {e:?}");
+            }
+            assert!(
+                m.coarse
+                    .iter()
+                    .all(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+            );
+            let n = m.coarse.len() as f32 / m.triangles.len() as f32;
+            assert!(
+                (0.08..0.16).contains(&n),
+                "rows {rows}: {n} of the triangles"
+            );
+            // Chords inside the curved surface: a little less volume.
+            let (fine, coarse) = (
+                volume(&m.triangles, &m.positions),
+                volume(&m.coarse, &m.positions),
+            );
+            assert!(
+                coarse < fine * 1.01 && coarse > fine * 0.9,
+                "rows {rows}: {coarse} vs {fine} m^3"
             );
         }
     }

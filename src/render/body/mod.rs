@@ -25,6 +25,8 @@
 
 mod shape;
 
+pub use shape::{VEST_ARMHOLE, VEST_HEM, VEST_NECK};
+
 use glam::{Mat3, Mat4, Quat, Vec3};
 use shisen::physics::body::{BodyPlan, Seg, arm_ik};
 use shisen::physics::lower::{BodyParams, Carried, Leg, LowerBody, WAIST_REST};
@@ -170,9 +172,10 @@ pub struct SkinVertex {
     pub normal: [f32; 3],
     /// Linear RGBA colour.
     pub color: [f32; 4],
-    /// A painted border: signed distance inside it (in its soft
-    /// half-widths) and the colour there ([`Vertex::paint`]).
-    pub paint: [f32; 4],
+    /// The point's position in the torso's design frame, from which the
+    /// renderer draws the vest's neckline and armholes per pixel
+    /// ([`VEST_NECK`], [`VEST_ARMHOLE`]); far outside them off the torso.
+    pub vest: [f32; 3],
     /// Bones (`Bone as u8`) of the weights; unused slots have weight 0.
     pub bones: [u8; 4],
     /// Weights, non-negative, summing to 1.
@@ -190,14 +193,40 @@ enum Part {
     Leg,
 }
 
+/// One grid of the body (a part, or a cap): its triangles in
+/// [`BodyMesh::indices`] and in [`BodyMesh::coarse_indices`], the vertices
+/// they use, and how far the coarse level of detail departs from the fine
+/// one. Pieces overlap rather than share vertices, so each can be drawn at
+/// either level, or left out, without opening a crack.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Piece {
+    /// Its range of [`BodyMesh::indices`].
+    pub fine: std::ops::Range<u32>,
+    /// Its range of [`BodyMesh::coarse_indices`].
+    pub coarse: std::ops::Range<u32>,
+    /// Its vertices.
+    pub vertices: std::ops::Range<u32>,
+    /// The largest distance of a skipped point from the coarse surface,
+    /// m (its geometric error).
+    pub error: f32,
+}
+
 /// The skinned upper-body mesh.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BodyMesh {
     vertices: Vec<SkinVertex>,
     /// Triangle list (counter-clockwise seen from outside) of the whole body.
     pub indices: Vec<u32>,
+    /// The same surface over every other ring and column of each part
+    /// (about a quarter of the triangles, the same vertices): a coarse
+    /// level of detail, for casting shadows.
+    pub coarse_indices: Vec<u32>,
     arm_indices: Vec<u32>,
+    coarse_arm_indices: Vec<u32>,
     parts: Vec<Part>,
+    pieces: Vec<Piece>,
+    /// The colour of bare skin in the vest's openings, linear RGB.
+    skin: [f32; 3],
 }
 
 impl BodyMesh {
@@ -211,6 +240,17 @@ impl BodyMesh {
     /// view (index the same skinned vertices as [`BodyMesh::indices`]).
     pub fn arm_indices(&self) -> &[u32] {
         &self.arm_indices
+    }
+
+    /// The grids the whole body's triangle lists are made of, in order.
+    pub fn pieces(&self) -> &[Piece] {
+        &self.pieces
+    }
+
+    /// [`BodyMesh::arm_indices`] over every other ring and column (see
+    /// [`BodyMesh::coarse_indices`]).
+    pub fn coarse_arm_indices(&self) -> &[u32] {
+        &self.coarse_arm_indices
     }
 
     /// Linear blend skinning: `out` is cleared and filled with one posed
@@ -228,8 +268,12 @@ impl BodyMesh {
                     sn += w * m.transform_vector3(n);
                 }
             }
+            // The shader reads the vest's design point from `rest` (x, y)
+            // and `paint` (z, then the bare skin's colour).
+            let [x, y, z] = v.vest;
             Vertex {
-                paint: v.paint,
+                rest: [x, y],
+                paint: [z, self.skin[0], self.skin[1], self.skin[2]],
                 ..Vertex::coloured(sp, sn.normalize_or(n), v.color)
             }
         }));

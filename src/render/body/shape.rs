@@ -10,7 +10,7 @@ use shisen::util::math::{gauss, hermite, smoothstep};
 
 use shisen_face::mesh::compute_normals;
 
-use super::{BodyMesh, BodyStyle, Bone, Part, SkinVertex, arm_frame, rest_legs, waist_rest};
+use super::{BodyMesh, BodyStyle, Bone, Part, Piece, SkinVertex, arm_frame, rest_legs, waist_rest};
 
 type Weights = ([u8; 4], [f32; 4]);
 
@@ -27,10 +27,10 @@ fn weights(pairs: &[(Bone, f32)]) -> Weights {
     (bones, w.map(|x| x / sum))
 }
 
-/// A vertex under construction: position, colour, weights, part, painted
-/// border ([`Vertex::paint`]).
+/// A vertex under construction: position, colour, weights, part, design
+/// point for the vest's openings ([`SkinVertex::vest`]).
 #[derive(Clone, Copy)]
-struct Pt(Vec3, [f32; 4], Weights, Part, [f32; 4]);
+struct Pt(Vec3, [f32; 4], Weights, Part, Vec3);
 
 /// Where a grid's triangles go: the whole body, also the first-person arm
 /// list from a ring on, or the arm list only.
@@ -41,23 +41,32 @@ enum Dest {
     ArmOnly,
 }
 
+/// A triangle list and its coarse level of detail (over every other ring
+/// and column of each grid, the same vertices).
+#[derive(Default)]
+struct Lists {
+    fine: Vec<u32>,
+    coarse: Vec<u32>,
+}
+
 #[derive(Default)]
 struct Builder {
     verts: Vec<SkinVertex>,
     parts: Vec<Part>,
-    main: Vec<u32>,
-    arm: Vec<u32>,
+    main: Lists,
+    arm: Lists,
     all: Vec<u32>,
+    pieces: Vec<Piece>,
 }
 
 impl Builder {
-    fn push(&mut self, &Pt(p, color, (bones, weights), part, paint): &Pt) -> u32 {
+    fn push(&mut self, &Pt(p, color, (bones, weights), part, vest): &Pt) -> u32 {
         let (pos, normal) = (p.to_array(), [0.0; 3]);
         let v = SkinVertex {
             pos,
             normal,
             color,
-            paint,
+            vest: vest.to_array(),
             bones,
             weights,
         };
@@ -66,48 +75,95 @@ impl Builder {
         self.verts.len() as u32 - 1
     }
 
-    fn tri(&mut self, t: [u32; 3], band: usize, dest: Dest) {
-        self.all.extend(t);
-        match dest {
-            Dest::Main => self.main.extend(t),
-            Dest::MainAndArm(first) => {
-                self.main.extend(t);
-                if band >= first {
-                    self.arm.extend(t);
-                }
-            }
-            Dest::ArmOnly => self.arm.extend(t),
+    /// Add triangle `t` of ring band `band` to the lists `dest` names, in
+    /// the fine or the coarse level of detail.
+    fn tri(&mut self, t: [u32; 3], band: usize, dest: Dest, coarse: bool) {
+        fn pick(l: &mut Lists, coarse: bool) -> &mut Vec<u32> {
+            if coarse { &mut l.coarse } else { &mut l.fine }
+        }
+        if !coarse {
+            self.all.extend(t);
+        }
+        let (main, arm) = match dest {
+            Dest::Main => (true, false),
+            Dest::MainAndArm(first) => (true, band >= first),
+            Dest::ArmOnly => (false, true),
+        };
+        if main {
+            pick(&mut self.main, coarse).extend(t);
+        }
+        if arm {
+            pick(&mut self.arm, coarse).extend(t);
         }
     }
 
     /// Quads between consecutive rings (each ring's points wind
     /// counter-clockwise about the direction from one ring to the next, seen
-    /// from that direction's tip), fans to the optional start and end poles.
+    /// from that direction's tip), fans to the optional start and end poles;
+    /// and the same over every other ring and column (the first and last
+    /// rings always) for the coarse level of detail. Rings have an even
+    /// number of points.
     fn grid(&mut self, rings: &[Vec<Pt>], poles: [Option<Pt>; 2], dest: Dest) {
         let cols = rings[0].len();
+        debug_assert!(cols.is_multiple_of(2), "{cols} columns");
         let base = self.verts.len() as u32;
+        let starts = [self.main.fine.len(), self.main.coarse.len()].map(|n| n as u32);
         for pt in rings.iter().flatten() {
             self.push(pt);
         }
         let at = |k: usize, j: usize| base + (k * cols + j % cols) as u32;
-        for k in 0..rings.len() - 1 {
-            for j in 0..cols {
-                let (a, b, c, d) = (at(k, j), at(k, j + 1), at(k + 1, j), at(k + 1, j + 1));
-                self.tri([a, b, c], k, dest);
-                self.tri([b, d, c], k, dest);
+        let last = rings.len() - 1;
+        let pole = [
+            poles[0].map(|p| self.push(&p)),
+            poles[1].map(|p| self.push(&p)),
+        ];
+        for (step, coarse) in [(1, false), (2, true)] {
+            let mut ks: Vec<usize> = (0..last).step_by(step).collect();
+            ks.push(last);
+            for w in ks.windows(2) {
+                let (k0, k1) = (w[0], w[1]);
+                for j in (0..cols).step_by(step) {
+                    let (a, b) = (at(k0, j), at(k0, j + step));
+                    let (c, d) = (at(k1, j), at(k1, j + step));
+                    // The band of the quad's last fine band: a coarse
+                    // quad across the first-person cut is kept.
+                    self.tri([a, b, c], k1 - 1, dest, coarse);
+                    self.tri([b, d, c], k1 - 1, dest, coarse);
+                }
+            }
+            for j in (0..cols).step_by(step) {
+                if let Some(i) = pole[0] {
+                    self.tri([i, at(0, j + step), at(0, j)], 0, dest, coarse);
+                }
+                if let Some(i) = pole[1] {
+                    self.tri([at(last, j), at(last, j + step), i], last, dest, coarse);
+                }
             }
         }
-        if let Some(p) = poles[0] {
-            let i = self.push(&p);
-            for j in 0..cols {
-                self.tri([i, at(0, j + 1), at(0, j)], 0, dest);
+        if !matches!(dest, Dest::ArmOnly) {
+            // How far the points the coarse grid skips stand off it: each
+            // from the middle of its coarse neighbours, along its ring or
+            // across the rings.
+            let p = |k: usize, j: usize| rings[k][j % cols].0;
+            let mut error = 0.0f32;
+            for k in 0..=last {
+                for j in 0..cols {
+                    let mid = if j % 2 == 1 {
+                        (p(k, j - 1) + p(k, j + 1)) / 2.0
+                    } else if k % 2 == 1 && k < last {
+                        (p(k - 1, j) + p(k + 1, j)) / 2.0
+                    } else {
+                        continue;
+                    };
+                    error = error.max(p(k, j).distance(mid));
+                }
             }
-        }
-        if let Some(p) = poles[1] {
-            let (i, l) = (self.push(&p), rings.len() - 1);
-            for j in 0..cols {
-                self.tri([at(l, j), at(l, j + 1), i], l, dest);
-            }
+            self.pieces.push(Piece {
+                fine: starts[0]..self.main.fine.len() as u32,
+                coarse: starts[1]..self.main.coarse.len() as u32,
+                vertices: base..self.verts.len() as u32,
+                error,
+            });
         }
     }
 }
@@ -175,23 +231,23 @@ const ELBOW_BLEND: f32 = 0.05;
 /// First-person arm list: the upper arm from this far below the shoulder.
 const FIRST_PERSON_FROM: f32 = 0.12;
 
-/// The vest's neckline and armholes at a torso point (design frame): the
-/// signed distance inside them (bare skin), in units of the hem's soft
-/// half-width, as the border of a [`Vertex::paint`] (the renderer
-/// thresholds it per pixel, so the hem stays sharp on the coarse torso).
-fn vest(d: Vec3) -> f32 {
-    let arm = ((d.x.abs() - 0.215) / 0.085).powi(2) + ((d.y - 1.47) / 0.15).powi(2);
-    let depth = 0.035 + 0.05 * smoothstep(-0.02, 0.04, d.z);
-    let neck = (d.x / 0.09).powi(2) + ((d.y - 1.535) / depth).powi(2);
-    // Elliptic radius 1 on the hem; about 8.5 cm per unit of it there.
-    (1.0 - arm.min(neck).sqrt()) * 0.085 / HEM_SOFT
-}
+/// The vest's armholes, in the torso's design frame (m): ellipses in x, y
+/// centred at |x| = `[0]`, y = `[1]`, half-axes `[2]` across and `[3]` up.
+/// The shader draws the vest's openings per pixel from each torso point's
+/// design position ([`SkinVertex::vest`]; `fs_body` in `shader.wgsl`, to
+/// which these numbers are prepended), so the hem is a smooth curve on any
+/// level of detail.
+pub const VEST_ARMHOLE: [f32; 4] = [0.215, 1.47, 0.085, 0.15];
+/// The vest's neckline: an ellipse in x, y centred at x = 0, y = `[0]`,
+/// half-width `[1]`, half-height `[2]` at the back, `[3]` more at the front
+/// (blended between z = `[4]` and `[5]`): a scoop.
+pub const VEST_NECK: [f32; 6] = [1.535, 0.09, 0.035, 0.05, -0.02, 0.04];
+/// Metres per unit of elliptic radius near the hem (to turn the ellipses'
+/// radius into a distance), and the half-width of its soft edge, m.
+pub const VEST_HEM: [f32; 2] = [0.085, 0.0015];
 
-/// Half-width of the vest hem's soft edge, m.
-const HEM_SOFT: f32 = 0.0015;
-
-/// A vertex's painted border: none.
-const NO_BORDER: [f32; 4] = [-1e3, 0.0, 0.0, 0.0];
+/// A vertex outside the vest's openings whatever its part: no border.
+const NO_VEST: Vec3 = Vec3::new(0.0, 100.0, 0.0);
 
 /// Torso section point (design frame) at angle `th` (0 front, +X at pi/2).
 fn torso_point(y: f32, a: f32, f: f32, b: f32, th: f32) -> Vec3 {
@@ -225,8 +281,7 @@ fn torso(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle) {
         let arm = shoulders.map(|s| 0.5 * (1.0 - smoothstep(0.03, 0.085, p.distance(s))));
         let w = [(Bone::UpperArmL, arm[0]), (Bone::UpperArmR, arm[1])];
         let w = weights(&[(Bone::Torso, 1.0 - arm[0] - arm[1]), w[0], w[1]]);
-        let skin = [vest(d), style.skin[0], style.skin[1], style.skin[2]];
-        Pt(p, style.shirt, w, Part::Torso, skin)
+        Pt(p, style.shirt, w, Part::Torso, d)
     };
     // Four rings per knot interval.
     let rings: Vec<Vec<Pt>> = (0..=(TORSO.len() - 1) * 4)
@@ -253,7 +308,7 @@ fn neck(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle) {
         let head = smoothstep(-0.03, 0.1, dy);
         let w = weights(&[(Bone::Torso, 1.0 - head), (Bone::Head, head)]);
         let p = centre + Vec3::new(a * s, 0.0, d * c);
-        Pt(p, style.skin, w, Part::Neck, NO_BORDER)
+        Pt(p, style.skin, w, Part::Neck, NO_VEST)
     };
     // From inside the torso to inside the head.
     let rings: Vec<Vec<Pt>> = (0..=10)
@@ -296,7 +351,7 @@ fn arm(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle, side: usize) {
         // The deltoid's top partly stays with the torso.
         let t = 0.25 * smoothstep(0.3, 1.0, (s - p).dot(d1) / DELTOID_R);
         let w = weights(&[(Bone::Torso, t), (ua, 1.0 - t - f), (fa, f)]);
-        Pt(p, style.skin, w, Part::Arm(side), NO_BORDER)
+        Pt(p, style.skin, w, Part::Arm(side), NO_VEST)
     };
     let mut specs: Vec<ArmRing> = Vec::new();
     // The deltoid: a ball round the shoulder pivot.
@@ -397,7 +452,7 @@ fn glove(b: &mut Builder, plan: &BodyPlan, style: &BodyStyle, side: usize) {
         } else {
             Part::Fist(side)
         };
-        Pt(p, c, w, part, NO_BORDER)
+        Pt(p, c, w, part, NO_VEST)
     };
     let mut rings: Vec<Vec<Pt>> = [
         -0.135, -0.131, -0.126, -0.117, -0.113, -0.109, -0.095, -0.091, -0.087, -0.078, -0.066,
@@ -471,7 +526,7 @@ fn legs(b: &mut Builder, style: &BodyStyle) {
         |p, f| {
             let trunk = 0.8 * (1.0 - smoothstep(0.15, 0.45, f));
             let w = weights(&[(Bone::Torso, trunk), (Bone::Pelvis, 1.0 - trunk)]);
-            Pt(p, style.trunks, w, Part::Leg, NO_BORDER)
+            Pt(p, style.trunks, w, Part::Leg, NO_VEST)
         },
     );
     for (side, leg) in legs.iter().enumerate() {
@@ -502,7 +557,7 @@ fn legs(b: &mut Builder, style: &BodyStyle) {
                 } else {
                     style.skin
                 };
-                Pt(p, colour, w, Part::Leg, NO_BORDER)
+                Pt(p, colour, w, Part::Leg, NO_VEST)
             },
         );
         // Shank with the calf, into a high shoe above the ankle.
@@ -523,7 +578,7 @@ fn legs(b: &mut Builder, style: &BodyStyle) {
                 let k = 1.0 - smoothstep(0.0, 0.15, f);
                 let w = weights(&[(thigh, k), (shin, 1.0 - k)]);
                 let colour = if f > 0.72 { style.shoes } else { style.skin };
-                Pt(p, colour, w, Part::Leg, NO_BORDER)
+                Pt(p, colour, w, Part::Leg, NO_VEST)
             },
         );
         // The shoe: a rounded box along the foot on the sole.
@@ -541,15 +596,7 @@ fn legs(b: &mut Builder, style: &BodyStyle) {
                 let h = 0.044 - 0.012 * smoothstep(0.5, 1.0, f);
                 (w, h)
             },
-            |p, _| {
-                Pt(
-                    p,
-                    style.shoes,
-                    weights(&[(foot, 1.0)]),
-                    Part::Leg,
-                    NO_BORDER,
-                )
-            },
+            |p, _| Pt(p, style.shoes, weights(&[(foot, 1.0)]), Part::Leg, NO_VEST),
         );
     }
 }
@@ -573,9 +620,13 @@ impl BodyMesh {
         }
         BodyMesh {
             vertices: b.verts,
-            indices: b.main,
-            arm_indices: b.arm,
+            indices: b.main.fine,
+            coarse_indices: b.main.coarse,
+            arm_indices: b.arm.fine,
+            coarse_arm_indices: b.arm.coarse,
             parts: b.parts,
+            pieces: b.pieces,
+            skin: [style.skin[0], style.skin[1], style.skin[2]],
         }
     }
 }

@@ -1,0 +1,193 @@
+//! Levels of detail and culling for the skinned bodies. Each grid of a
+//! body ([`Piece`]) is left out where it lies wholly outside the view,
+//! drawn at its coarse level where that level departs from the fine one
+//! by less than [`LOD_PIXELS`] of a pixel at its distance (the screen-space
+//! error of a level of detail), and at the fine level otherwise. On a
+//! software rasteriser every triangle costs, whether it covers a pixel or
+//! none; the coarse level has a quarter of the triangles.
+
+use std::ops::Range;
+
+use glam::{Mat4, Vec3, Vec4};
+
+use super::body::Piece;
+use super::geometry::Vertex;
+
+/// The largest screen-space error of a piece drawn coarse, pixels: one,
+/// the usual bound of a level of detail's error (a silhouette moves by at
+/// most a pixel where the coarse level takes over).
+pub const LOD_PIXELS: f32 = 1.0;
+
+/// Which index list a run draws from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Lod {
+    /// [`super::body::BodyMesh::indices`].
+    Fine,
+    /// [`super::body::BodyMesh::coarse_indices`].
+    Coarse,
+}
+
+/// A range of one index list to draw.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Run {
+    /// The list.
+    pub lod: Lod,
+    /// Its indices.
+    pub range: Range<u32>,
+}
+
+/// What a camera sees: its clip planes and how many pixels a radian spans.
+#[derive(Clone, Copy, Debug)]
+pub struct Sight {
+    planes: [Vec4; 6],
+    eye: Vec3,
+    px_per_radian: f32,
+}
+
+impl Sight {
+    /// The view of `view_proj` (clip depth 0 to 1, as wgpu's) from `eye`,
+    /// `fov_y` radians high over `height_px` pixels.
+    pub fn new(view_proj: Mat4, eye: Vec3, fov_y: f32, height_px: u32) -> Sight {
+        let [r0, r1, r2, r3] = [0, 1, 2, 3].map(|i| view_proj.row(i));
+        Sight {
+            planes: [r3 + r0, r3 - r0, r3 + r1, r3 - r1, r2, r3 - r2],
+            eye,
+            px_per_radian: height_px as f32 / (2.0 * (fov_y / 2.0).tan()),
+        }
+    }
+
+    /// Whether a sphere lies wholly outside the view.
+    fn outside(&self, centre: Vec3, radius: f32) -> bool {
+        self.planes
+            .iter()
+            .any(|p| p.truncate().dot(centre) + p.w < -radius * p.truncate().length())
+    }
+}
+
+/// The runs to draw of a body posed as `posed`, made of `pieces`, seen in
+/// `sight`: pieces outside it left out, each of the others at the level
+/// [`LOD_PIXELS`] allows, neighbours at the same level merged.
+pub fn runs(pieces: &[Piece], posed: &[Vertex], sight: &Sight) -> Vec<Run> {
+    let mut out: Vec<Run> = Vec::new();
+    for piece in pieces {
+        let points = posed[piece.vertices.start as usize..piece.vertices.end as usize]
+            .iter()
+            .map(|v| Vec3::from_array(v.pos));
+        let (lo, hi) = points.fold((Vec3::MAX, Vec3::MIN), |(lo, hi), p| (lo.min(p), hi.max(p)));
+        let (centre, radius) = ((lo + hi) / 2.0, (hi - lo).length() / 2.0);
+        if !radius.is_finite() || sight.outside(centre, radius) {
+            continue;
+        }
+        let distance = (centre.distance(sight.eye) - radius).max(0.05);
+        let (lod, range) = if piece.error / distance * sight.px_per_radian < LOD_PIXELS {
+            (Lod::Coarse, piece.coarse.clone())
+        } else {
+            (Lod::Fine, piece.fine.clone())
+        };
+        match out.last_mut() {
+            Some(last) if last.lod == lod && last.range.end == range.start => {
+                last.range.end = range.end;
+            }
+            _ => out.push(Run { lod, range }),
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::body::{BodyMesh, BodyStyle, REST_POSE};
+    use crate::render::camera::Camera;
+    use shisen::physics::body::BodyPlan;
+
+    fn body() -> (BodyMesh, Vec<Vertex>) {
+        let m = BodyMesh::new(&BodyPlan::default(), &BodyStyle::VH);
+        let mut posed = Vec::new();
+        m.skin(&REST_POSE, &mut posed);
+        (m, posed)
+    }
+
+    fn sight(eye: Vec3, target: Vec3, height_px: u32) -> Sight {
+        let cam = Camera {
+            eye,
+            target,
+            fov_y: 50f32.to_radians(),
+            aspect: 16.0 / 9.0,
+        };
+        Sight::new(cam.view_proj(), eye, cam.fov_y, height_px)
+    }
+
+    fn triangles(runs: &[Run], lod: Lod) -> u32 {
+        runs.iter()
+            .filter(|r| r.lod == lod)
+            .map(|r| r.range.len() as u32 / 3)
+            .sum()
+    }
+
+    #[test]
+    fn pieces_tile_both_lists_in_order() {
+        let (m, _) = body();
+        let (mut fine, mut coarse) = (0, 0);
+        for p in m.pieces() {
+            assert_eq!((p.fine.start, p.coarse.start), (fine, coarse));
+            (fine, coarse) = (p.fine.end, p.coarse.end);
+            assert!(p.coarse.len() <= p.fine.len() / 2, "{p:?}");
+            // Every triangle of a piece uses only its vertices.
+            for list in [
+                &m.indices[p.fine.start as usize..p.fine.end as usize],
+                &m.coarse_indices[p.coarse.start as usize..p.coarse.end as usize],
+            ] {
+                assert!(list.iter().all(|i| p.vertices.contains(i)), "{p:?}");
+            }
+            // Sagging chords: centimetres at most (the elbow's olecranon,
+            // the torso's boxy sections), not the metres of a wrong range.
+            assert!((0.0..0.015).contains(&p.error), "{p:?}");
+        }
+        assert_eq!(fine as usize, m.indices.len());
+        assert_eq!(coarse as usize, m.coarse_indices.len());
+        let ratio = m.indices.len() as f32 / m.coarse_indices.len() as f32;
+        assert!((3.0..4.5).contains(&ratio), "{ratio}");
+    }
+
+    #[test]
+    fn near_is_fine_far_is_coarse_behind_is_left_out() {
+        let (m, posed) = body();
+        let all = m.indices.len() as u32 / 3;
+        let chest = Vec3::new(0.0, 1.3, 0.0);
+        // Across a ring from the front, at a window's resolution: fine.
+        let near = runs(
+            m.pieces(),
+            &posed,
+            &sight(Vec3::new(0.0, 1.5, 1.0), chest, 1080),
+        );
+        assert!(triangles(&near, Lod::Fine) > all / 2, "{near:?}");
+        // Across the hall, on a small picture: all coarse, nothing left out.
+        let far = runs(
+            m.pieces(),
+            &posed,
+            &sight(Vec3::new(0.0, 1.5, 8.0), chest, 360),
+        );
+        assert_eq!(triangles(&far, Lod::Fine), 0, "{far:?}");
+        assert_eq!(
+            triangles(&far, Lod::Coarse) as usize,
+            m.coarse_indices.len() / 3
+        );
+        assert_eq!(far.len(), 1, "neighbours merged: {far:?}");
+        // Looking away: nothing drawn.
+        let away = runs(
+            m.pieces(),
+            &posed,
+            &sight(Vec3::new(0.0, 1.5, 1.0), Vec3::new(0.0, 1.5, 3.0), 720),
+        );
+        assert!(away.is_empty(), "{away:?}");
+        // Looking at the face from close by: the legs and shoes left out.
+        let face = runs(
+            m.pieces(),
+            &posed,
+            &sight(Vec3::new(0.0, 1.65, 0.6), Vec3::new(0.0, 1.65, 0.0), 720),
+        );
+        let drawn = triangles(&face, Lod::Fine) + triangles(&face, Lod::Coarse);
+        assert!(drawn < all * 3 / 4, "{drawn} of {all}");
+    }
+}
