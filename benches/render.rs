@@ -50,8 +50,7 @@ fn frame(c: &mut Criterion) {
     g.bench_function("frame 1280x720, no read-back", |b| {
         b.iter(|| {
             let f = Frame::build(&sim, View::First, Overlays::default(), 16.0 / 9.0);
-            gpu.renderer
-                .render(&f, &sim.model().face.mesh, SIZE);
+            gpu.renderer.render(&f, &sim.model().face.mesh, SIZE);
             gpu.renderer.wait();
         })
     });

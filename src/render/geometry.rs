@@ -120,6 +120,11 @@ pub fn capsule_with(half_height: f32, radius: f32, rings: u32, segments: u32) ->
     lathe_with(&profile, segments)
 }
 
+/// How far inside the unit sphere [`rounded_box`]`(2.0)` (the coarse
+/// sphere: 30 deg round, 22.5 deg in latitude) can be, as a fraction of the
+/// radius: the middle of a quad's diagonal, 1 - cos(37.5 deg / 2).
+pub const BLOB_ERROR: f32 = 0.054;
+
 /// Rounded box of half extent 1: the superellipsoid
 /// `|x|^p + |y|^p + |z|^p = 1` (a sphere at `p = 2`, nearer a cube as `p`
 /// grows), a coarse sphere's vertices carried onto it with its exact

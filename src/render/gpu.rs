@@ -847,7 +847,11 @@ impl Renderer {
             });
             pass.set_bind_group(0, &self.globals_bind, &[]);
             for (i, d) in frame.draws.iter().enumerate() {
-                let Some(mesh) = self.mesh_of(d.mesh) else {
+                let key = match d.mesh {
+                    MeshKey::Sphere if sight.coarse_sphere(d.model) => MeshKey::Blob,
+                    key => key,
+                };
+                let Some(mesh) = self.mesh_of(key) else {
                     continue;
                 };
                 // The skinned bodies are closed (their keys are dynamic).

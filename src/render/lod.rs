@@ -11,7 +11,7 @@ use std::ops::Range;
 use glam::{Mat4, Vec3, Vec4};
 
 use super::body::Piece;
-use super::geometry::Vertex;
+use super::geometry::{BLOB_ERROR, Vertex};
 
 /// The largest screen-space error of a piece drawn coarse, pixels: one,
 /// the usual bound of a level of detail's error (a silhouette moves by at
@@ -56,6 +56,23 @@ impl Sight {
         }
     }
 
+    /// Whether a coarse level `error` metres off the fine one may stand in
+    /// for it over a sphere: under [`LOD_PIXELS`] at the sphere's nearest.
+    fn coarse_enough(&self, error: f32, centre: Vec3, radius: f32) -> bool {
+        let distance = (centre.distance(self.eye) - radius).max(0.05);
+        error / distance * self.px_per_radian < LOD_PIXELS
+    }
+
+    /// Whether a unit sphere drawn with `model` may be drawn as the coarse
+    /// sphere ([`BLOB_ERROR`] of its radius off).
+    pub fn coarse_sphere(&self, model: Mat4) -> bool {
+        let radius = [model.x_axis, model.y_axis, model.z_axis]
+            .map(|a| a.truncate().length())
+            .into_iter()
+            .fold(0.0, f32::max);
+        self.coarse_enough(BLOB_ERROR * radius, model.w_axis.truncate(), radius)
+    }
+
     /// Whether a sphere lies wholly outside the view.
     fn outside(&self, centre: Vec3, radius: f32) -> bool {
         self.planes
@@ -78,8 +95,7 @@ pub fn runs(pieces: &[Piece], posed: &[Vertex], sight: &Sight) -> Vec<Run> {
         if !radius.is_finite() || sight.outside(centre, radius) {
             continue;
         }
-        let distance = (centre.distance(sight.eye) - radius).max(0.05);
-        let (lod, range) = if piece.error / distance * sight.px_per_radian < LOD_PIXELS {
+        let (lod, range) = if sight.coarse_enough(piece.error, centre, radius) {
             (Lod::Coarse, piece.coarse.clone())
         } else {
             (Lod::Fine, piece.fine.clone())
@@ -123,6 +139,37 @@ mod tests {
             .filter(|r| r.lod == lod)
             .map(|r| r.range.len() as u32 / 3)
             .sum()
+    }
+
+    #[test]
+    fn the_coarse_sphere_stays_within_its_error() {
+        let blob = crate::render::geometry::rounded_box(2.0);
+        let p = |i: u32| Vec3::from_array(blob.vertices[i as usize].pos);
+        let mut worst = 0.0f32;
+        for t in blob.indices.as_chunks::<3>().0 {
+            let [a, b, c] = t.map(p);
+            for q in [
+                (a + b + c) / 3.0,
+                (a + b) / 2.0,
+                (b + c) / 2.0,
+                (c + a) / 2.0,
+            ] {
+                worst = worst.max(1.0 - q.length());
+            }
+        }
+        assert!(worst <= BLOB_ERROR && worst > 0.8 * BLOB_ERROR, "{worst}");
+        // An eyeball (12 mm) at sparring distance on a 720-pixel picture:
+        // coarse; a head-sized ball 30 cm away: fine.
+        let s = sight(Vec3::new(0.0, 1.6, 1.0), Vec3::new(0.0, 1.6, 0.0), 720);
+        let ball = |r: f32, z: f32| {
+            Mat4::from_scale_rotation_translation(
+                Vec3::splat(r),
+                glam::Quat::IDENTITY,
+                Vec3::new(0.0, 1.6, z),
+            )
+        };
+        assert!(s.coarse_sphere(ball(0.012, 0.0)));
+        assert!(!s.coarse_sphere(ball(0.1, 0.6)));
     }
 
     #[test]
