@@ -15,7 +15,7 @@ use super::draw::{
 };
 use super::frame::{AvatarPart, Frame, Looks};
 use super::geometry::{self, MeshData, Vertex};
-use super::lod::{self, Lod, Sight};
+use super::lod::{self, Sight};
 
 /// Rendering errors.
 #[derive(Debug, thiserror::Error)]
@@ -101,9 +101,9 @@ struct GpuMesh {
     vertices: wgpu::Buffer,
     indices: wgpu::Buffer,
     count: u32,
-    /// A coarse level of detail over the same vertices (its indices and
-    /// their count), for the shadow pass.
-    coarse: Option<(wgpu::Buffer, u32)>,
+    /// Coarser levels of detail over the same vertices, finer first (each
+    /// its indices and their count); the coarsest casts the shadow.
+    coarser: Vec<(wgpu::Buffer, u32)>,
 }
 
 struct Target {
@@ -534,7 +534,7 @@ impl Renderer {
         r
     }
 
-    fn make_mesh(&self, data: &MeshData, usage: wgpu::BufferUsages, coarse: &[u32]) -> GpuMesh {
+    fn make_mesh(&self, data: &MeshData, usage: wgpu::BufferUsages, coarser: &[&[u32]]) -> GpuMesh {
         let vertices = self
             .device
             .create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -549,21 +549,24 @@ impl Renderer {
                 contents: bytemuck::cast_slice(&data.indices),
                 usage: wgpu::BufferUsages::INDEX,
             });
-        let coarse = (!coarse.is_empty()).then(|| {
-            let buffer = self
-                .device
-                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("shisen coarse indices"),
-                    contents: bytemuck::cast_slice(coarse),
-                    usage: wgpu::BufferUsages::INDEX,
-                });
-            (buffer, coarse.len() as u32)
-        });
+        let coarser = coarser
+            .iter()
+            .map(|level| {
+                let buffer = self
+                    .device
+                    .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                        label: Some("shisen coarser indices"),
+                        contents: bytemuck::cast_slice(level),
+                        usage: wgpu::BufferUsages::INDEX,
+                    });
+                (buffer, level.len() as u32)
+            })
+            .collect();
         GpuMesh {
             vertices,
             indices,
             count: data.indices.len() as u32,
-            coarse,
+            coarser,
         }
     }
 
@@ -644,12 +647,17 @@ impl Renderer {
     /// Upload this frame's vertices of a dynamic mesh; its buffers are
     /// rebuilt (with `indices`) only when the vertex or index count
     /// changes.
-    fn dynamic_mesh(&mut self, key: MeshKey, vertices: &[Vertex], indices: &[u32], coarse: &[u32]) {
+    fn dynamic_mesh(&mut self, key: MeshKey, vertices: &[Vertex], levels: &[&[u32]]) {
+        let (indices, coarser) = levels.split_first().expect("a fine level");
         match self.dynamic.get(&key) {
             Some((m, n))
                 if *n == vertices.len()
                     && m.count as usize == indices.len()
-                    && m.coarse.as_ref().map_or(0, |c| c.1 as usize) == coarse.len() =>
+                    && m.coarser.len() == coarser.len()
+                    && m.coarser
+                        .iter()
+                        .zip(coarser)
+                        .all(|(m, c)| m.1 as usize == c.len()) =>
             {
                 self.queue
                     .write_buffer(&m.vertices, 0, bytemuck::cast_slice(vertices));
@@ -659,7 +667,7 @@ impl Renderer {
                     vertices: vertices.to_vec(),
                     indices: indices.to_vec(),
                 };
-                let mesh = self.make_mesh(&data, wgpu::BufferUsages::COPY_DST, coarse);
+                let mesh = self.make_mesh(&data, wgpu::BufferUsages::COPY_DST, coarser);
                 self.dynamic.insert(key, (mesh, vertices.len()));
             }
         }
@@ -684,19 +692,17 @@ impl Renderer {
         self.dynamic_mesh(
             MeshKey::Face,
             &frame.face,
-            face.triangles.as_flattened(),
-            face.coarse.as_flattened(),
+            &[face.triangles.as_flattened(), face.coarse.as_flattened()],
         );
         let lashes: Vec<u32> = (0..frame.lashes.len() as u32).collect();
-        self.dynamic_mesh(MeshKey::Lashes, &frame.lashes, &lashes, &[]);
-        self.dynamic_mesh(MeshKey::HairShell, &frame.hair.0, &frame.hair.1, &[]);
+        self.dynamic_mesh(MeshKey::Lashes, &frame.lashes, &[&lashes]);
+        self.dynamic_mesh(MeshKey::HairShell, &frame.hair.0, &[&frame.hair.1]);
         let looks = Looks::of(&frame.plan);
         for (key, vertices, part) in [
             (MeshKey::Body, &frame.body, AvatarPart::Whole),
             (MeshKey::Avatar, &frame.avatar, frame.avatar_indices),
         ] {
-            let (fine, coarse) = looks.indices(key, part);
-            self.dynamic_mesh(key, vertices, fine, coarse);
+            self.dynamic_mesh(key, vertices, &looks.levels(key, part));
         }
         // The whole bodies by pieces: those in view, each at its level of
         // detail (your arms in the first-person view are near: all fine).
@@ -870,11 +876,12 @@ impl Renderer {
                     continue;
                 };
                 for run in runs {
-                    let indices = match (run.lod, &mesh.coarse) {
-                        (Lod::Fine, _) => &mesh.indices,
-                        (Lod::Coarse, Some((coarse, _))) => coarse,
-                        // A body always has its coarse list.
-                        (Lod::Coarse, None) => continue,
+                    let indices = match run.level {
+                        0 => &mesh.indices,
+                        l => match mesh.coarser.get(l - 1) {
+                            Some((indices, _)) => indices,
+                            None => continue,
+                        },
                     };
                     pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
                     pass.draw_indexed(run.range.clone(), 0, 0..1);
@@ -917,7 +924,7 @@ impl Renderer {
             key
         };
         let mesh = self.mesh_of(key)?;
-        Some(match &mesh.coarse {
+        Some(match mesh.coarser.last() {
             Some((indices, count)) => (&mesh.vertices, indices, *count),
             None => (&mesh.vertices, &mesh.indices, mesh.count),
         })

@@ -1,16 +1,16 @@
-//! Levels of detail and culling for the skinned bodies. Each grid of a
-//! body ([`Piece`]) is left out where it lies wholly outside the view,
-//! drawn at its coarse level where that level departs from the fine one
-//! by less than [`LOD_PIXELS`] of a pixel at its distance (the screen-space
-//! error of a level of detail), and at the fine level otherwise. On a
+//! Levels of detail and culling. Each grid of a skinned body ([`Piece`])
+//! is left out where it lies wholly outside the view, and drawn at the
+//! coarsest of its levels ([`LEVELS`]) that departs from the fine one by
+//! less than [`LOD_PIXELS`] at its distance (the screen-space error of a
+//! level of detail); a sphere likewise at the coarse sphere's. On a
 //! software rasteriser every triangle costs, whether it covers a pixel or
-//! none; the coarse level has a quarter of the triangles.
+//! none.
 
 use std::ops::Range;
 
 use glam::{Mat4, Vec3, Vec4};
 
-use super::body::Piece;
+use super::body::{LEVELS, Piece};
 use super::geometry::{BLOB_ERROR, Vertex};
 
 /// The largest screen-space error of a piece drawn coarse, pixels: one,
@@ -18,20 +18,11 @@ use super::geometry::{BLOB_ERROR, Vertex};
 /// most a pixel where the coarse level takes over).
 pub const LOD_PIXELS: f32 = 1.0;
 
-/// Which index list a run draws from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Lod {
-    /// [`super::body::BodyMesh::indices`].
-    Fine,
-    /// [`super::body::BodyMesh::coarse_indices`].
-    Coarse,
-}
-
-/// A range of one index list to draw.
+/// A range of one level's index list to draw.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Run {
-    /// The list.
-    pub lod: Lod,
+    /// The level of detail ([`super::body::BodyMesh::level`]).
+    pub level: usize,
     /// Its indices.
     pub range: Range<u32>,
 }
@@ -82,8 +73,8 @@ impl Sight {
 }
 
 /// The runs to draw of a body posed as `posed`, made of `pieces`, seen in
-/// `sight`: pieces outside it left out, each of the others at the level
-/// [`LOD_PIXELS`] allows, neighbours at the same level merged.
+/// `sight`: pieces outside it left out, each of the others at the coarsest
+/// level [`LOD_PIXELS`] allows, neighbours at the same level merged.
 pub fn runs(pieces: &[Piece], posed: &[Vertex], sight: &Sight) -> Vec<Run> {
     let mut out: Vec<Run> = Vec::new();
     for piece in pieces {
@@ -95,16 +86,16 @@ pub fn runs(pieces: &[Piece], posed: &[Vertex], sight: &Sight) -> Vec<Run> {
         if !radius.is_finite() || sight.outside(centre, radius) {
             continue;
         }
-        let (lod, range) = if sight.coarse_enough(piece.error, centre, radius) {
-            (Lod::Coarse, piece.coarse.clone())
-        } else {
-            (Lod::Fine, piece.fine.clone())
-        };
+        let level = (0..LEVELS)
+            .rev()
+            .find(|&l| sight.coarse_enough(piece.errors[l], centre, radius))
+            .unwrap_or(0);
+        let range = piece.ranges[level].clone();
         match out.last_mut() {
-            Some(last) if last.lod == lod && last.range.end == range.start => {
+            Some(last) if last.level == level && last.range.end == range.start => {
                 last.range.end = range.end;
             }
-            _ => out.push(Run { lod, range }),
+            _ => out.push(Run { level, range }),
         }
     }
     out
@@ -134,9 +125,9 @@ mod tests {
         Sight::new(cam.view_proj(), eye, cam.fov_y, height_px)
     }
 
-    fn triangles(runs: &[Run], lod: Lod) -> u32 {
+    fn triangles(runs: &[Run], level: usize) -> u32 {
         runs.iter()
-            .filter(|r| r.lod == lod)
+            .filter(|r| r.level == level)
             .map(|r| r.range.len() as u32 / 3)
             .sum()
     }
@@ -173,28 +164,38 @@ mod tests {
     }
 
     #[test]
-    fn pieces_tile_both_lists_in_order() {
+    fn pieces_tile_every_level_in_order() {
         let (m, _) = body();
-        let (mut fine, mut coarse) = (0, 0);
+        let mut at = [0u32; LEVELS];
         for p in m.pieces() {
-            assert_eq!((p.fine.start, p.coarse.start), (fine, coarse));
-            (fine, coarse) = (p.fine.end, p.coarse.end);
-            assert!(p.coarse.len() <= p.fine.len() / 2, "{p:?}");
-            // Every triangle of a piece uses only its vertices.
-            for list in [
-                &m.indices[p.fine.start as usize..p.fine.end as usize],
-                &m.coarse_indices[p.coarse.start as usize..p.coarse.end as usize],
-            ] {
+            for (l, at) in at.iter_mut().enumerate() {
+                assert_eq!(p.ranges[l].start, *at, "level {l}: {p:?}");
+                *at = p.ranges[l].end;
+                // Every triangle of a piece uses only its vertices.
+                let list = &m.level(l)[p.ranges[l].start as usize..p.ranges[l].end as usize];
                 assert!(list.iter().all(|i| p.vertices.contains(i)), "{p:?}");
             }
+            // Each level no finer, nor better, than the one before.
+            let n = p.ranges.clone().map(|r| r.len());
+            assert!(n[1] <= n[0] && n[2] < n[1], "{p:?}");
+            assert!(p.errors[0] == 0.0 && p.errors[1] <= p.errors[2], "{p:?}");
             // Sagging chords: centimetres at most (the elbow's olecranon,
             // the torso's boxy sections), not the metres of a wrong range.
-            assert!((0.0..0.015).contains(&p.error), "{p:?}");
+            assert!(p.errors[2] < 0.015, "{p:?}");
         }
-        assert_eq!(fine as usize, m.indices.len());
-        assert_eq!(coarse as usize, m.coarse_indices.len());
-        let ratio = m.indices.len() as f32 / m.coarse_indices.len() as f32;
-        assert!((3.0..4.5).contains(&ratio), "{ratio}");
+        for (l, end) in at.iter().enumerate() {
+            assert_eq!(*end as usize, m.level(l).len());
+        }
+        let ratio = [1, 2].map(|l| m.indices.len() as f32 / m.level(l).len() as f32);
+        assert!((1.8..2.2).contains(&ratio[0]), "{ratio:?}");
+        assert!((3.0..4.5).contains(&ratio[1]), "{ratio:?}");
+        // The torso's sections are boxy, its rings close: level 1 drops
+        // every other ring and departs by a millimetre.
+        let torso = &m.pieces()[0];
+        assert!(
+            torso.errors[1] < 0.0015 && torso.errors[2] > 0.005,
+            "{torso:?}"
+        );
     }
 
     #[test]
@@ -202,25 +203,28 @@ mod tests {
         let (m, posed) = body();
         let all = m.indices.len() as u32 / 3;
         let chest = Vec3::new(0.0, 1.3, 0.0);
-        // Across a ring from the front, at a window's resolution: fine.
+        // Across a ring from the front, at a window's resolution: mostly
+        // fine.
         let near = runs(
             m.pieces(),
             &posed,
             &sight(Vec3::new(0.0, 1.5, 1.0), chest, 1080),
         );
-        assert!(triangles(&near, Lod::Fine) > all / 2, "{near:?}");
-        // Across the hall, on a small picture: all coarse, nothing left out.
+        assert!(triangles(&near, 0) > all / 3, "{near:?}");
+        // Across the hall, on a small picture: all coarsest, nothing left
+        // out, in one run.
         let far = runs(
             m.pieces(),
             &posed,
             &sight(Vec3::new(0.0, 1.5, 8.0), chest, 360),
         );
-        assert_eq!(triangles(&far, Lod::Fine), 0, "{far:?}");
         assert_eq!(
-            triangles(&far, Lod::Coarse) as usize,
-            m.coarse_indices.len() / 3
+            far,
+            vec![Run {
+                level: 2,
+                range: 0..m.level(2).len() as u32
+            }]
         );
-        assert_eq!(far.len(), 1, "neighbours merged: {far:?}");
         // Looking away: nothing drawn.
         let away = runs(
             m.pieces(),
@@ -234,7 +238,7 @@ mod tests {
             &posed,
             &sight(Vec3::new(0.0, 1.65, 0.6), Vec3::new(0.0, 1.65, 0.0), 720),
         );
-        let drawn = triangles(&face, Lod::Fine) + triangles(&face, Lod::Coarse);
+        let drawn: u32 = (0..LEVELS).map(|l| triangles(&face, l)).sum();
         assert!(drawn < all * 3 / 4, "{drawn} of {all}");
     }
 }

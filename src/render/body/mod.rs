@@ -193,22 +193,26 @@ enum Part {
     Leg,
 }
 
-/// One grid of the body (a part, or a cap): its triangles in
-/// [`BodyMesh::indices`] and in [`BodyMesh::coarse_indices`], the vertices
-/// they use, and how far the coarse level of detail departs from the fine
-/// one. Pieces overlap rather than share vertices, so each can be drawn at
-/// either level, or left out, without opening a crack.
+/// Levels of detail of a body's triangles, the same vertices: 0 the fine
+/// mesh; 1 each grid over every other ring or every other column,
+/// whichever departs less from the fine surface (half the triangles); 2
+/// over both (a quarter).
+pub const LEVELS: usize = 3;
+
+/// One grid of the body (a part, or a cap): its triangles at each level of
+/// detail ([`BodyMesh::level`]), the vertices they use, and how far each
+/// level departs from the fine one. Pieces overlap rather than share
+/// vertices, so each can be drawn at any level, or left out, without
+/// opening a crack.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Piece {
-    /// Its range of [`BodyMesh::indices`].
-    pub fine: std::ops::Range<u32>,
-    /// Its range of [`BodyMesh::coarse_indices`].
-    pub coarse: std::ops::Range<u32>,
+    /// Its range of each level's triangle list.
+    pub ranges: [std::ops::Range<u32>; LEVELS],
     /// Its vertices.
     pub vertices: std::ops::Range<u32>,
-    /// The largest distance of a skipped point from the coarse surface,
-    /// m (its geometric error).
-    pub error: f32,
+    /// The largest distance of a point a level skips from that level's
+    /// surface, m (its geometric error; 0 at the fine level).
+    pub errors: [f32; LEVELS],
 }
 
 /// The skinned upper-body mesh.
@@ -217,10 +221,8 @@ pub struct BodyMesh {
     vertices: Vec<SkinVertex>,
     /// Triangle list (counter-clockwise seen from outside) of the whole body.
     pub indices: Vec<u32>,
-    /// The same surface over every other ring and column of each part
-    /// (about a quarter of the triangles, the same vertices): a coarse
-    /// level of detail, for casting shadows.
-    pub coarse_indices: Vec<u32>,
+    /// Levels of detail 1 and 2 of the same.
+    coarser: [Vec<u32>; LEVELS - 1],
     arm_indices: Vec<u32>,
     coarse_arm_indices: Vec<u32>,
     parts: Vec<Part>,
@@ -242,13 +244,22 @@ impl BodyMesh {
         &self.arm_indices
     }
 
+    /// The whole body's triangle list at level of detail `level` (below
+    /// [`LEVELS`]; 0 is [`BodyMesh::indices`]).
+    pub fn level(&self, level: usize) -> &[u32] {
+        match level {
+            0 => &self.indices,
+            l => &self.coarser[l - 1],
+        }
+    }
+
     /// The grids the whole body's triangle lists are made of, in order.
     pub fn pieces(&self) -> &[Piece] {
         &self.pieces
     }
 
-    /// [`BodyMesh::arm_indices`] over every other ring and column (see
-    /// [`BodyMesh::coarse_indices`]).
+    /// [`BodyMesh::arm_indices`] at the coarsest level of detail (over every
+    /// other ring and column), for casting shadows.
     pub fn coarse_arm_indices(&self) -> &[u32] {
         &self.coarse_arm_indices
     }

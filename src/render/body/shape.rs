@@ -10,7 +10,9 @@ use shisen::util::math::{gauss, hermite, smoothstep};
 
 use shisen_face::mesh::compute_normals;
 
-use super::{BodyMesh, BodyStyle, Bone, Part, Piece, SkinVertex, arm_frame, rest_legs, waist_rest};
+use super::{
+    BodyMesh, BodyStyle, Bone, LEVELS, Part, Piece, SkinVertex, arm_frame, rest_legs, waist_rest,
+};
 
 type Weights = ([u8; 4], [f32; 4]);
 
@@ -41,13 +43,9 @@ enum Dest {
     ArmOnly,
 }
 
-/// A triangle list and its coarse level of detail (over every other ring
-/// and column of each grid, the same vertices).
-#[derive(Default)]
-struct Lists {
-    fine: Vec<u32>,
-    coarse: Vec<u32>,
-}
+/// A triangle list at each level of detail ([`LEVELS`]), over the same
+/// vertices.
+type Lists = [Vec<u32>; LEVELS];
 
 #[derive(Default)]
 struct Builder {
@@ -75,13 +73,10 @@ impl Builder {
         self.verts.len() as u32 - 1
     }
 
-    /// Add triangle `t` of ring band `band` to the lists `dest` names, in
-    /// the fine or the coarse level of detail.
-    fn tri(&mut self, t: [u32; 3], band: usize, dest: Dest, coarse: bool) {
-        fn pick(l: &mut Lists, coarse: bool) -> &mut Vec<u32> {
-            if coarse { &mut l.coarse } else { &mut l.fine }
-        }
-        if !coarse {
+    /// Add triangle `t` of ring band `band` to the lists `dest` names, at
+    /// level of detail `level`.
+    fn tri(&mut self, t: [u32; 3], band: usize, dest: Dest, level: usize) {
+        if level == 0 {
             self.all.extend(t);
         }
         let (main, arm) = match dest {
@@ -90,24 +85,25 @@ impl Builder {
             Dest::ArmOnly => (false, true),
         };
         if main {
-            pick(&mut self.main, coarse).extend(t);
+            self.main[level].extend(t);
         }
         if arm {
-            pick(&mut self.arm, coarse).extend(t);
+            self.arm[level].extend(t);
         }
     }
 
     /// Quads between consecutive rings (each ring's points wind
     /// counter-clockwise about the direction from one ring to the next, seen
     /// from that direction's tip), fans to the optional start and end poles;
-    /// and the same over every other ring and column (the first and last
-    /// rings always) for the coarse level of detail. Rings have an even
+    /// at each coarser level of detail the same over every other ring or
+    /// column (level 1: whichever departs less from the fine surface), then
+    /// both (level 2), the first and last rings always. Rings have an even
     /// number of points.
     fn grid(&mut self, rings: &[Vec<Pt>], poles: [Option<Pt>; 2], dest: Dest) {
         let cols = rings[0].len();
         debug_assert!(cols.is_multiple_of(2), "{cols} columns");
         let base = self.verts.len() as u32;
-        let starts = [self.main.fine.len(), self.main.coarse.len()].map(|n| n as u32);
+        let starts = self.main.each_ref().map(|l| l.len() as u32);
         for pt in rings.iter().flatten() {
             self.push(pt);
         }
@@ -117,52 +113,52 @@ impl Builder {
             poles[0].map(|p| self.push(&p)),
             poles[1].map(|p| self.push(&p)),
         ];
-        for (step, coarse) in [(1, false), (2, true)] {
-            let mut ks: Vec<usize> = (0..last).step_by(step).collect();
+        // How far the points each coarser grid skips stand off it: each
+        // from the middle of its neighbours across the rings, or along its
+        // ring.
+        let p = |k: usize, j: usize| rings[k][j % cols].0;
+        let (mut across, mut along) = (0.0f32, 0.0f32);
+        for k in 0..=last {
+            for j in 0..cols {
+                if j % 2 == 1 {
+                    along = along.max(p(k, j).distance((p(k, j - 1) + p(k, j + 1)) / 2.0));
+                } else if k % 2 == 1 && k < last {
+                    across = across.max(p(k, j).distance((p(k - 1, j) + p(k + 1, j)) / 2.0));
+                }
+            }
+        }
+        // (ring step, column step) of each level.
+        let half = if across <= along { (2, 1) } else { (1, 2) };
+        let errors = [0.0, across.min(along), across.max(along)];
+        for (level, (rs, cs)) in [(1, 1), half, (2, 2)].into_iter().enumerate() {
+            let mut ks: Vec<usize> = (0..last).step_by(rs).collect();
             ks.push(last);
             for w in ks.windows(2) {
                 let (k0, k1) = (w[0], w[1]);
-                for j in (0..cols).step_by(step) {
-                    let (a, b) = (at(k0, j), at(k0, j + step));
-                    let (c, d) = (at(k1, j), at(k1, j + step));
+                for j in (0..cols).step_by(cs) {
+                    let (a, b) = (at(k0, j), at(k0, j + cs));
+                    let (c, d) = (at(k1, j), at(k1, j + cs));
                     // The band of the quad's last fine band: a coarse
                     // quad across the first-person cut is kept.
-                    self.tri([a, b, c], k1 - 1, dest, coarse);
-                    self.tri([b, d, c], k1 - 1, dest, coarse);
+                    self.tri([a, b, c], k1 - 1, dest, level);
+                    self.tri([b, d, c], k1 - 1, dest, level);
                 }
             }
-            for j in (0..cols).step_by(step) {
+            for j in (0..cols).step_by(cs) {
                 if let Some(i) = pole[0] {
-                    self.tri([i, at(0, j + step), at(0, j)], 0, dest, coarse);
+                    self.tri([i, at(0, j + cs), at(0, j)], 0, dest, level);
                 }
                 if let Some(i) = pole[1] {
-                    self.tri([at(last, j), at(last, j + step), i], last, dest, coarse);
+                    self.tri([at(last, j), at(last, j + cs), i], last, dest, level);
                 }
             }
         }
         if !matches!(dest, Dest::ArmOnly) {
-            // How far the points the coarse grid skips stand off it: each
-            // from the middle of its coarse neighbours, along its ring or
-            // across the rings.
-            let p = |k: usize, j: usize| rings[k][j % cols].0;
-            let mut error = 0.0f32;
-            for k in 0..=last {
-                for j in 0..cols {
-                    let mid = if j % 2 == 1 {
-                        (p(k, j - 1) + p(k, j + 1)) / 2.0
-                    } else if k % 2 == 1 && k < last {
-                        (p(k - 1, j) + p(k + 1, j)) / 2.0
-                    } else {
-                        continue;
-                    };
-                    error = error.max(p(k, j).distance(mid));
-                }
-            }
+            let ends = self.main.each_ref().map(|l| l.len() as u32);
             self.pieces.push(Piece {
-                fine: starts[0]..self.main.fine.len() as u32,
-                coarse: starts[1]..self.main.coarse.len() as u32,
+                ranges: [0, 1, 2].map(|l| starts[l]..ends[l]),
                 vertices: base..self.verts.len() as u32,
-                error,
+                errors,
             });
         }
     }
@@ -618,12 +614,14 @@ impl BodyMesh {
         for (v, n) in b.verts.iter_mut().zip(normals) {
             v.normal = n.to_array();
         }
+        let [indices, half, coarse] = b.main;
+        let [arm_indices, _, coarse_arm] = b.arm;
         BodyMesh {
             vertices: b.verts,
-            indices: b.main.fine,
-            coarse_indices: b.main.coarse,
-            arm_indices: b.arm.fine,
-            coarse_arm_indices: b.arm.coarse,
+            indices,
+            coarser: [half, coarse],
+            arm_indices,
+            coarse_arm_indices: coarse_arm,
             parts: b.parts,
             pieces: b.pieces,
             skin: [style.skin[0], style.skin[1], style.skin[2]],
