@@ -114,7 +114,7 @@ pub enum Material {
     /// The face: skin with its painted borders and wrinkles.
     Face = 4,
     /// A skinned body (closed; its back faces are skipped): skin light,
-    /// one painted border (the vest's hem).
+    /// the vest's neckline and armholes drawn per pixel.
     Body = 5,
     /// Hair seen as strands (the lashes): lit with the instance colour,
     /// matte (a highlight on strands thinner than a pixel greys them).

@@ -21,12 +21,13 @@ pub struct Vertex {
     pub wrinkle: [f32; 4],
     /// Painted borders, thresholded per pixel: the face's lips, brows and
     /// hair ([`shisen_face::appearance::Regions`]); on the bodies, the
-    /// signed distance inside one border (in its soft half-widths) and the
-    /// RGB colour there; unused elsewhere.
+    /// point's depth in the torso's design frame and the bare skin's RGB
+    /// colour ([`super::body::SkinVertex::vest`]); unused elsewhere.
     pub paint: [f32; 4],
     /// The face's rest position (x, y in its own frame), from which the
     /// lips' border is drawn per pixel ([`shisen_face::appearance::LipShape`]);
-    /// zero elsewhere.
+    /// on the bodies, the point's x, y in the torso's design frame, from
+    /// which the vest's openings are; zero elsewhere.
     pub rest: [f32; 2],
 }
 

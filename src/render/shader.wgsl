@@ -110,13 +110,14 @@ struct PaintedOut {
     @location(2) color: vec4<f32>,
     // Face wrinkles: slopes across x and y, phases along x and y.
     @location(3) wrinkle: vec4<f32>,
-    // Face: lips, brow height, hair, brow half-width. Body: the signed
-    // distance inside one border and the colour there.
+    // Face: lips, brow height, hair, brow half-width. Body: the point's
+    // depth in the torso's design frame (z), then the bare skin's colour.
     @location(4) paint: vec4<f32>,
     // The point in the mesh's own frame (the face's: x right, y up, z out
     // of the face), for the skin's and the hairs' fine detail.
     @location(5) local: vec3<f32>,
-    // Face: the point's rest position (x, y), for the lips' border.
+    // Face: the point's rest position (x, y), for the lips' border. Body:
+    // its x, y in the torso's design frame, for the vest's openings.
     @location(6) rest: vec2<f32>,
 };
 
@@ -278,9 +279,10 @@ fn skin(base: vec3<f32>, n: vec3<f32>, view_dir: vec3<f32>, shade: f32, top: f32
     return lit;
 }
 
-// A skinned body: skin light and one painted border, `paint.x` the
-// signed distance inside it (its soft half-widths) and `paint.yzw` the
-// colour there (the bare skin inside the vest's neckline and armholes).
+// A skinned body: skin light; bare skin (`paint.yzw`) inside the vest's
+// neckline and armholes, drawn per pixel from the point's position in the
+// torso's design frame (`rest`, `paint.x`), so the hem is a smooth curve
+// at any level of detail.
 @fragment
 fn fs_body(v: PaintedOut) -> @location(0) vec4<f32> {
     let view_dir = normalize(g.camera.xyz - v.world);
