@@ -12,7 +12,7 @@ use shisen_face::appearance::LipShape;
 use shisen_face::mesh::compute_normals;
 use shisen_gaze::util::math::{dir_from_yaw_pitch, yaw_pitch_of};
 
-use super::body::{BodyMesh, BodyStyle, LEVELS, Pose, SKIN, avatar_pose, vh_pose};
+use super::body::{BodyMesh, BodyStyle, LEVELS, Piece, Pose, SKIN, avatar_pose, vh_pose};
 use super::camera::{Camera, View};
 use super::draw::{Draw, Label, LineVertex, Material, MeshKey};
 use super::face_parts::{caruncles, hair_shell, lashes, mouth};
@@ -113,17 +113,17 @@ impl Looks {
     }
 
     /// Triangles of a body mesh key at each of its levels of detail, the
-    /// fine first ([`BodyMesh::level`]; your arms alone have the fine and
-    /// the coarsest).
-    pub fn levels(&self, key: MeshKey, part: AvatarPart) -> Vec<&[u32]> {
-        match (key, part) {
-            (MeshKey::Avatar, AvatarPart::Arms) => {
-                vec![self.you.arm_indices(), self.you.coarse_arm_indices()]
-            }
-            (MeshKey::Avatar, AvatarPart::Whole) => {
-                (0..LEVELS).map(|l| self.you.level(l)).collect()
-            }
-            _ => (0..LEVELS).map(|l| self.vh.level(l)).collect(),
+    /// fine first ([`BodyMesh::level`]), and the pieces they are made of.
+    pub fn levels(&self, key: MeshKey, part: AvatarPart) -> (Vec<&[u32]>, &[Piece]) {
+        let (mesh, arms) = match key {
+            MeshKey::Avatar => (&self.you, part == AvatarPart::Arms),
+            _ => (&self.vh, false),
+        };
+        if arms {
+            let levels = (0..LEVELS).map(|l| mesh.arm_level(l)).collect();
+            (levels, mesh.arm_pieces())
+        } else {
+            ((0..LEVELS).map(|l| mesh.level(l)).collect(), mesh.pieces())
         }
     }
 }

@@ -697,28 +697,19 @@ impl Renderer {
         let lashes: Vec<u32> = (0..frame.lashes.len() as u32).collect();
         self.dynamic_mesh(MeshKey::Lashes, &frame.lashes, &[&lashes]);
         self.dynamic_mesh(MeshKey::HairShell, &frame.hair.0, &[&frame.hair.1]);
+        // The bodies by pieces: those in view, each at its level of detail.
         let looks = Looks::of(&frame.plan);
+        let cam = &frame.camera;
+        let sight = Sight::new(cam.view_proj(), cam.eye, cam.fov_y, size.1);
+        let mut body_runs = Vec::new();
         for (key, vertices, part) in [
             (MeshKey::Body, &frame.body, AvatarPart::Whole),
             (MeshKey::Avatar, &frame.avatar, frame.avatar_indices),
         ] {
-            self.dynamic_mesh(key, vertices, &looks.levels(key, part));
+            let (levels, pieces) = looks.levels(key, part);
+            self.dynamic_mesh(key, vertices, &levels);
+            body_runs.push((key, lod::runs(pieces, vertices, &sight)));
         }
-        // The whole bodies by pieces: those in view, each at its level of
-        // detail (your arms in the first-person view are near: all fine).
-        let cam = &frame.camera;
-        let sight = Sight::new(cam.view_proj(), cam.eye, cam.fov_y, size.1);
-        let mut body_runs = vec![(
-            MeshKey::Body,
-            lod::runs(looks.vh.pieces(), &frame.body, &sight),
-        )];
-        if frame.avatar_indices == AvatarPart::Whole {
-            body_runs.push((
-                MeshKey::Avatar,
-                lod::runs(looks.you.pieces(), &frame.avatar, &sight),
-            ));
-        }
-
         let (key, fill) = (KEY_DIR.normalize(), FILL_DIR.normalize());
         // The shader's plain lighting on the floor's upward normal.
         let floor_light = key_fill_light(Vec3::Y);

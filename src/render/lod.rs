@@ -166,25 +166,38 @@ mod tests {
     #[test]
     fn pieces_tile_every_level_in_order() {
         let (m, _) = body();
-        let mut at = [0u32; LEVELS];
-        for p in m.pieces() {
-            for (l, at) in at.iter_mut().enumerate() {
-                assert_eq!(p.ranges[l].start, *at, "level {l}: {p:?}");
-                *at = p.ranges[l].end;
-                // Every triangle of a piece uses only its vertices.
-                let list = &m.level(l)[p.ranges[l].start as usize..p.ranges[l].end as usize];
-                assert!(list.iter().all(|i| p.vertices.contains(i)), "{p:?}");
+        // The whole body's lists, and the first-person arms'.
+        let whole = (
+            m.pieces(),
+            (0..LEVELS).map(|l| m.level(l)).collect::<Vec<_>>(),
+        );
+        let arms = (
+            m.arm_pieces(),
+            (0..LEVELS).map(|l| m.arm_level(l)).collect(),
+        );
+        for (pieces, levels) in [whole, arms] {
+            assert!(!pieces.is_empty());
+            let mut at = [0u32; LEVELS];
+            for p in pieces {
+                for (l, at) in at.iter_mut().enumerate() {
+                    assert_eq!(p.ranges[l].start, *at, "level {l}: {p:?}");
+                    *at = p.ranges[l].end;
+                    // Every triangle of a piece uses only its vertices.
+                    let list = &levels[l][p.ranges[l].start as usize..p.ranges[l].end as usize];
+                    assert!(list.iter().all(|i| p.vertices.contains(i)), "{p:?}");
+                }
+                // Each level no finer, nor better, than the one before.
+                let n = p.ranges.clone().map(|r| r.len());
+                assert!(n[1] <= n[0] && n[2] <= n[1], "{p:?}");
+                assert!(p.errors[0] == 0.0 && p.errors[1] <= p.errors[2], "{p:?}");
+                // Sagging chords: centimetres at most (the elbow's
+                // olecranon, the torso's boxy sections), not the metres of
+                // a wrong range.
+                assert!(p.errors[2] < 0.015, "{p:?}");
             }
-            // Each level no finer, nor better, than the one before.
-            let n = p.ranges.clone().map(|r| r.len());
-            assert!(n[1] <= n[0] && n[2] < n[1], "{p:?}");
-            assert!(p.errors[0] == 0.0 && p.errors[1] <= p.errors[2], "{p:?}");
-            // Sagging chords: centimetres at most (the elbow's olecranon,
-            // the torso's boxy sections), not the metres of a wrong range.
-            assert!(p.errors[2] < 0.015, "{p:?}");
-        }
-        for (l, end) in at.iter().enumerate() {
-            assert_eq!(*end as usize, m.level(l).len());
+            for (l, end) in at.iter().enumerate() {
+                assert_eq!(*end as usize, levels[l].len());
+            }
         }
         let ratio = [1, 2].map(|l| m.indices.len() as f32 / m.level(l).len() as f32);
         assert!((1.8..2.2).contains(&ratio[0]), "{ratio:?}");

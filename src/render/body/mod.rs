@@ -224,7 +224,8 @@ pub struct BodyMesh {
     /// Levels of detail 1 and 2 of the same.
     coarser: [Vec<u32>; LEVELS - 1],
     arm_indices: Vec<u32>,
-    coarse_arm_indices: Vec<u32>,
+    arm_coarser: [Vec<u32>; LEVELS - 1],
+    arm_pieces: Vec<Piece>,
     parts: Vec<Part>,
     pieces: Vec<Piece>,
     /// The colour of bare skin in the vest's openings, linear RGB.
@@ -258,10 +259,18 @@ impl BodyMesh {
         &self.pieces
     }
 
-    /// [`BodyMesh::arm_indices`] at the coarsest level of detail (over every
-    /// other ring and column), for casting shadows.
-    pub fn coarse_arm_indices(&self) -> &[u32] {
-        &self.coarse_arm_indices
+    /// [`BodyMesh::arm_indices`] at level of detail `level` (as
+    /// [`BodyMesh::level`]).
+    pub fn arm_level(&self, level: usize) -> &[u32] {
+        match level {
+            0 => &self.arm_indices,
+            l => &self.arm_coarser[l - 1],
+        }
+    }
+
+    /// The grids [`BodyMesh::arm_indices`] is made of, in order.
+    pub fn arm_pieces(&self) -> &[Piece] {
+        &self.arm_pieces
     }
 
     /// Linear blend skinning: `out` is cleared and filled with one posed

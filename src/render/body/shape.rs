@@ -55,6 +55,7 @@ struct Builder {
     arm: Lists,
     all: Vec<u32>,
     pieces: Vec<Piece>,
+    arm_pieces: Vec<Piece>,
 }
 
 impl Builder {
@@ -104,6 +105,7 @@ impl Builder {
         debug_assert!(cols.is_multiple_of(2), "{cols} columns");
         let base = self.verts.len() as u32;
         let starts = self.main.each_ref().map(|l| l.len() as u32);
+        let arm_starts = self.arm.each_ref().map(|l| l.len() as u32);
         for pt in rings.iter().flatten() {
             self.push(pt);
         }
@@ -153,13 +155,21 @@ impl Builder {
                 }
             }
         }
-        if !matches!(dest, Dest::ArmOnly) {
-            let ends = self.main.each_ref().map(|l| l.len() as u32);
-            self.pieces.push(Piece {
-                ranges: [0, 1, 2].map(|l| starts[l]..ends[l]),
-                vertices: base..self.verts.len() as u32,
-                errors,
-            });
+        // The grid's piece of each list it added to (the first-person
+        // arms take part of a grid: the whole grid's errors bound theirs).
+        let vertices = base..self.verts.len() as u32;
+        for (lists, starts, pieces) in [
+            (&self.main, starts, &mut self.pieces),
+            (&self.arm, arm_starts, &mut self.arm_pieces),
+        ] {
+            let ends = lists.each_ref().map(|l| l.len() as u32);
+            if ends[0] > starts[0] {
+                pieces.push(Piece {
+                    ranges: [0, 1, 2].map(|l| starts[l]..ends[l]),
+                    vertices: vertices.clone(),
+                    errors,
+                });
+            }
         }
     }
 }
@@ -615,13 +625,14 @@ impl BodyMesh {
             v.normal = n.to_array();
         }
         let [indices, half, coarse] = b.main;
-        let [arm_indices, _, coarse_arm] = b.arm;
+        let [arm_indices, arm_half, coarse_arm] = b.arm;
         BodyMesh {
             vertices: b.verts,
             indices,
             coarser: [half, coarse],
             arm_indices,
-            coarse_arm_indices: coarse_arm,
+            arm_coarser: [arm_half, coarse_arm],
+            arm_pieces: b.arm_pieces,
             parts: b.parts,
             pieces: b.pieces,
             skin: [style.skin[0], style.skin[1], style.skin[2]],
