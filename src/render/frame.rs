@@ -113,18 +113,17 @@ impl Looks {
     }
 
     /// Triangles of a body mesh key at each of its levels of detail, the
-    /// fine first ([`BodyMesh::level`]), and the pieces they are made of.
+    /// fine first ([`Lists::level`](super::body::Lists::level)), and the pieces they are made of.
     pub fn levels(&self, key: MeshKey, part: AvatarPart) -> (Vec<&[u32]>, &[Piece]) {
         let (mesh, arms) = match key {
             MeshKey::Avatar => (&self.you, part == AvatarPart::Arms),
             _ => (&self.vh, false),
         };
-        if arms {
-            let levels = (0..LEVELS).map(|l| mesh.arm_level(l)).collect();
-            (levels, mesh.arm_pieces())
-        } else {
-            ((0..LEVELS).map(|l| mesh.level(l)).collect(), mesh.pieces())
-        }
+        let lists = if arms { mesh.arms() } else { mesh.whole() };
+        (
+            (0..LEVELS).map(|l| lists.level(l)).collect(),
+            lists.pieces(),
+        )
     }
 }
 

@@ -106,6 +106,17 @@ struct GpuMesh {
     coarser: Vec<(wgpu::Buffer, u32)>,
 }
 
+impl GpuMesh {
+    /// The index buffer of level of detail `level` (0 the fine one), if
+    /// the mesh has it.
+    fn level(&self, level: usize) -> Option<&wgpu::Buffer> {
+        match level {
+            0 => Some(&self.indices),
+            l => self.coarser.get(l - 1).map(|(indices, _)| indices),
+        }
+    }
+}
+
 struct Target {
     size: (u32, u32),
     color: wgpu::Texture,
@@ -867,12 +878,8 @@ impl Renderer {
                     continue;
                 };
                 for run in runs {
-                    let indices = match run.level {
-                        0 => &mesh.indices,
-                        l => match mesh.coarser.get(l - 1) {
-                            Some((indices, _)) => indices,
-                            None => continue,
-                        },
+                    let Some(indices) = mesh.level(run.level) else {
+                        continue;
                     };
                     pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
                     pass.draw_indexed(run.range.clone(), 0, 0..1);

@@ -21,7 +21,7 @@ pub const LOD_PIXELS: f32 = 1.0;
 /// A range of one level's index list to draw.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Run {
-    /// The level of detail ([`super::body::BodyMesh::level`]).
+    /// The level of detail ([`super::body::Lists::level`]).
     pub level: usize,
     /// Its indices.
     pub range: Range<u32>,
@@ -167,15 +167,11 @@ mod tests {
     fn pieces_tile_every_level_in_order() {
         let (m, _) = body();
         // The whole body's lists, and the first-person arms'.
-        let whole = (
-            m.pieces(),
-            (0..LEVELS).map(|l| m.level(l)).collect::<Vec<_>>(),
-        );
-        let arms = (
-            m.arm_pieces(),
-            (0..LEVELS).map(|l| m.arm_level(l)).collect(),
-        );
-        for (pieces, levels) in [whole, arms] {
+        for lists in [m.whole(), m.arms()] {
+            let (pieces, levels) = (
+                lists.pieces(),
+                (0..LEVELS).map(|l| lists.level(l)).collect::<Vec<_>>(),
+            );
             assert!(!pieces.is_empty());
             let mut at = [0u32; LEVELS];
             for p in pieces {
@@ -199,12 +195,13 @@ mod tests {
                 assert_eq!(*end as usize, levels[l].len());
             }
         }
-        let ratio = [1, 2].map(|l| m.indices.len() as f32 / m.level(l).len() as f32);
+        let ratio =
+            [1, 2].map(|l| m.whole().level(0).len() as f32 / m.whole().level(l).len() as f32);
         assert!((1.8..2.2).contains(&ratio[0]), "{ratio:?}");
         assert!((3.0..4.5).contains(&ratio[1]), "{ratio:?}");
         // The torso's sections are boxy, its rings close: level 1 drops
         // every other ring and departs by a millimetre.
-        let torso = &m.pieces()[0];
+        let torso = &m.whole().pieces()[0];
         assert!(
             torso.errors[1] < 0.0015 && torso.errors[2] > 0.005,
             "{torso:?}"
@@ -214,12 +211,12 @@ mod tests {
     #[test]
     fn near_is_fine_far_is_coarse_behind_is_left_out() {
         let (m, posed) = body();
-        let all = m.indices.len() as u32 / 3;
+        let all = m.whole().level(0).len() as u32 / 3;
         let chest = Vec3::new(0.0, 1.3, 0.0);
         // Across a ring from the front, at a window's resolution: mostly
         // fine.
         let near = runs(
-            m.pieces(),
+            m.whole().pieces(),
             &posed,
             &sight(Vec3::new(0.0, 1.5, 1.0), chest, 1080),
         );
@@ -227,7 +224,7 @@ mod tests {
         // Across the hall, on a small picture: all coarsest, nothing left
         // out, in one run.
         let far = runs(
-            m.pieces(),
+            m.whole().pieces(),
             &posed,
             &sight(Vec3::new(0.0, 1.5, 8.0), chest, 360),
         );
@@ -235,19 +232,19 @@ mod tests {
             far,
             vec![Run {
                 level: 2,
-                range: 0..m.level(2).len() as u32
+                range: 0..m.whole().level(2).len() as u32
             }]
         );
         // Looking away: nothing drawn.
         let away = runs(
-            m.pieces(),
+            m.whole().pieces(),
             &posed,
             &sight(Vec3::new(0.0, 1.5, 1.0), Vec3::new(0.0, 1.5, 3.0), 720),
         );
         assert!(away.is_empty(), "{away:?}");
         // Looking at the face from close by: the legs and shoes left out.
         let face = runs(
-            m.pieces(),
+            m.whole().pieces(),
             &posed,
             &sight(Vec3::new(0.0, 1.65, 0.6), Vec3::new(0.0, 1.65, 0.0), 720),
         );

@@ -200,7 +200,7 @@ enum Part {
 pub const LEVELS: usize = 3;
 
 /// One grid of the body (a part, or a cap): its triangles at each level of
-/// detail ([`BodyMesh::level`]), the vertices they use, and how far each
+/// detail ([`Lists::level`]), the vertices they use, and how far each
 /// level departs from the fine one. Pieces overlap rather than share
 /// vertices, so each can be drawn at any level, or left out, without
 /// opening a crack.
@@ -215,19 +215,34 @@ pub struct Piece {
     pub errors: [f32; LEVELS],
 }
 
+/// A triangle list (counter-clockwise seen from outside) at each level of
+/// detail, over the same vertices, and the grids it is made of.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Lists {
+    levels: [Vec<u32>; LEVELS],
+    pieces: Vec<Piece>,
+}
+
+impl Lists {
+    /// The triangle list at level of detail `level` (below [`LEVELS`]; 0
+    /// is the fine one).
+    pub fn level(&self, level: usize) -> &[u32] {
+        &self.levels[level]
+    }
+
+    /// The grids the lists are made of, in order.
+    pub fn pieces(&self) -> &[Piece] {
+        &self.pieces
+    }
+}
+
 /// The skinned upper-body mesh.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BodyMesh {
     vertices: Vec<SkinVertex>,
-    /// Triangle list (counter-clockwise seen from outside) of the whole body.
-    pub indices: Vec<u32>,
-    /// Levels of detail 1 and 2 of the same.
-    coarser: [Vec<u32>; LEVELS - 1],
-    arm_indices: Vec<u32>,
-    arm_coarser: [Vec<u32>; LEVELS - 1],
-    arm_pieces: Vec<Piece>,
+    whole: Lists,
+    arms: Lists,
     parts: Vec<Part>,
-    pieces: Vec<Piece>,
     /// The colour of bare skin in the vest's openings, linear RGB.
     skin: [f32; 3],
 }
@@ -238,39 +253,16 @@ impl BodyMesh {
         &self.vertices
     }
 
+    /// The whole body's triangles.
+    pub fn whole(&self) -> &Lists {
+        &self.whole
+    }
+
     /// Triangles of the forearms, gloves and the lower half of the upper
     /// arms, with a cap closing each upper arm's cut, for the first-person
-    /// view (index the same skinned vertices as [`BodyMesh::indices`]).
-    pub fn arm_indices(&self) -> &[u32] {
-        &self.arm_indices
-    }
-
-    /// The whole body's triangle list at level of detail `level` (below
-    /// [`LEVELS`]; 0 is [`BodyMesh::indices`]).
-    pub fn level(&self, level: usize) -> &[u32] {
-        match level {
-            0 => &self.indices,
-            l => &self.coarser[l - 1],
-        }
-    }
-
-    /// The grids the whole body's triangle lists are made of, in order.
-    pub fn pieces(&self) -> &[Piece] {
-        &self.pieces
-    }
-
-    /// [`BodyMesh::arm_indices`] at level of detail `level` (as
-    /// [`BodyMesh::level`]).
-    pub fn arm_level(&self, level: usize) -> &[u32] {
-        match level {
-            0 => &self.arm_indices,
-            l => &self.arm_coarser[l - 1],
-        }
-    }
-
-    /// The grids [`BodyMesh::arm_indices`] is made of, in order.
-    pub fn arm_pieces(&self) -> &[Piece] {
-        &self.arm_pieces
+    /// view (indexing the same skinned vertices as [`BodyMesh::whole`]).
+    pub fn arms(&self) -> &Lists {
+        &self.arms
     }
 
     /// Linear blend skinning: `out` is cleared and filled with one posed
@@ -450,7 +442,8 @@ mod tests {
         m: &'a BodyMesh,
         p: &'a [Vec3],
     ) -> impl Iterator<Item = ([u32; 3], [Vec3; 3])> + 'a {
-        m.indices
+        m.whole()
+            .level(0)
             .as_chunks::<3>()
             .0
             .iter()
@@ -532,7 +525,7 @@ mod tests {
         assert!((3000..=10_000).contains(&n), "{n} vertices");
         assert_eq!(m, BodyMesh::new(&plan, &BodyStyle::VH), "deterministic");
         let p = posed(&m, &REST_POSE);
-        for list in [&m.indices, &m.arm_indices] {
+        for list in [m.whole().level(0), m.arms().level(0)] {
             assert!(!list.is_empty() && list.len() % 3 == 0);
             assert!(list.iter().all(|&i| (i as usize) < n));
             for t in list.as_chunks::<3>().0 {

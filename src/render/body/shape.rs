@@ -11,7 +11,7 @@ use shisen::util::math::{gauss, hermite, smoothstep};
 use shisen_face::mesh::compute_normals;
 
 use super::{
-    BodyMesh, BodyStyle, Bone, LEVELS, Part, Piece, SkinVertex, arm_frame, rest_legs, waist_rest,
+    BodyMesh, BodyStyle, Bone, Lists, Part, Piece, SkinVertex, arm_frame, rest_legs, waist_rest,
 };
 
 type Weights = ([u8; 4], [f32; 4]);
@@ -43,10 +43,6 @@ enum Dest {
     ArmOnly,
 }
 
-/// A triangle list at each level of detail ([`LEVELS`]), over the same
-/// vertices.
-type Lists = [Vec<u32>; LEVELS];
-
 #[derive(Default)]
 struct Builder {
     verts: Vec<SkinVertex>,
@@ -54,8 +50,6 @@ struct Builder {
     main: Lists,
     arm: Lists,
     all: Vec<u32>,
-    pieces: Vec<Piece>,
-    arm_pieces: Vec<Piece>,
 }
 
 impl Builder {
@@ -86,10 +80,10 @@ impl Builder {
             Dest::ArmOnly => (false, true),
         };
         if main {
-            self.main[level].extend(t);
+            self.main.levels[level].extend(t);
         }
         if arm {
-            self.arm[level].extend(t);
+            self.arm.levels[level].extend(t);
         }
     }
 
@@ -104,8 +98,8 @@ impl Builder {
         let cols = rings[0].len();
         debug_assert!(cols.is_multiple_of(2), "{cols} columns");
         let base = self.verts.len() as u32;
-        let starts = self.main.each_ref().map(|l| l.len() as u32);
-        let arm_starts = self.arm.each_ref().map(|l| l.len() as u32);
+        let starts = self.main.levels.each_ref().map(|l| l.len() as u32);
+        let arm_starts = self.arm.levels.each_ref().map(|l| l.len() as u32);
         for pt in rings.iter().flatten() {
             self.push(pt);
         }
@@ -158,13 +152,10 @@ impl Builder {
         // The grid's piece of each list it added to (the first-person
         // arms take part of a grid: the whole grid's errors bound theirs).
         let vertices = base..self.verts.len() as u32;
-        for (lists, starts, pieces) in [
-            (&self.main, starts, &mut self.pieces),
-            (&self.arm, arm_starts, &mut self.arm_pieces),
-        ] {
-            let ends = lists.each_ref().map(|l| l.len() as u32);
+        for (lists, starts) in [(&mut self.main, starts), (&mut self.arm, arm_starts)] {
+            let ends = lists.levels.each_ref().map(|l| l.len() as u32);
             if ends[0] > starts[0] {
-                pieces.push(Piece {
+                lists.pieces.push(Piece {
                     ranges: [0, 1, 2].map(|l| starts[l]..ends[l]),
                     vertices: vertices.clone(),
                     errors,
@@ -624,17 +615,11 @@ impl BodyMesh {
         for (v, n) in b.verts.iter_mut().zip(normals) {
             v.normal = n.to_array();
         }
-        let [indices, half, coarse] = b.main;
-        let [arm_indices, arm_half, coarse_arm] = b.arm;
         BodyMesh {
             vertices: b.verts,
-            indices,
-            coarser: [half, coarse],
-            arm_indices,
-            arm_coarser: [arm_half, coarse_arm],
-            arm_pieces: b.arm_pieces,
+            whole: b.main,
+            arms: b.arm,
             parts: b.parts,
-            pieces: b.pieces,
             skin: [style.skin[0], style.skin[1], style.skin[2]],
         }
     }
