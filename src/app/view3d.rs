@@ -8,7 +8,7 @@ use eframe::egui_wgpu;
 use glam::{Vec2, Vec3};
 
 use crate::input::Pointer;
-use crate::render::{Blit, BlitBind, Camera, Frame, Overlays, Panel, Renderer, View};
+use crate::render::{Blit, BlitBind, Camera, Frame, Overlays, Panel, Relay, Renderer, View};
 
 use super::session::Session;
 use shisen::sim::Sim;
@@ -16,6 +16,9 @@ use shisen::sim::Sim;
 /// The viewport's GPU side.
 pub struct Viewport {
     renderer: Renderer,
+    /// On a software rasteriser, the renderer draws on a device of its
+    /// own and its pictures reach the window a frame later ([`Relay`]).
+    relay: Option<Relay>,
     blit: Blit,
     /// Camera.
     pub view: View,
@@ -98,7 +101,26 @@ impl RenderScale {
 impl Viewport {
     /// A viewport on eframe's device.
     pub fn new(rs: &egui_wgpu::RenderState, view: View) -> Self {
-        let renderer = Renderer::for_window(&rs.adapter, &rs.device, &rs.queue);
+        let software = rs.adapter.get_info().device_type == wgpu::DeviceType::Cpu;
+        // On a software rasteriser the view is drawn on a device of its
+        // own, a frame ahead of the window ([`Relay`]).
+        let (renderer, relay) = match software
+            .then(|| Relay::open(&rs.adapter, &rs.device, &rs.queue))
+            .transpose()
+        {
+            Ok(Some((renderer, relay))) => (renderer, Some(relay)),
+            Ok(None) => (
+                Renderer::for_window(&rs.adapter, &rs.device, &rs.queue),
+                None,
+            ),
+            Err(e) => {
+                tracing::warn!(error = %e, "the view is drawn on the window's device");
+                (
+                    Renderer::for_window(&rs.adapter, &rs.device, &rs.queue),
+                    None,
+                )
+            }
+        };
         // A software rasteriser starts below full resolution (about 60 fps
         // at 1280x720 on two cores) and finds its level from there. A GPU
         // renders at full resolution: the scale follows the interval
@@ -108,7 +130,8 @@ impl Viewport {
         scale.auto = renderer.software();
         Viewport {
             renderer,
-            blit: Blit::new(&rs.device, rs.target_format),
+            relay,
+            blit: Blit::new(&rs.device, &rs.queue, rs.target_format),
             view,
             overlays: Overlays::default(),
             knock: 1.0,
@@ -129,8 +152,7 @@ impl Viewport {
                 (p.y * pixels_per_point).round(),
             ]
         };
-        self.blit
-            .set_panels(self.renderer.queue(), [px(rect.min), px(rect.max)], panels);
+        self.blit.set_panels([px(rect.min), px(rect.max)], panels);
     }
 
     /// Switch between first person and orbit.
@@ -228,12 +250,26 @@ impl Viewport {
         }
         self.build_ms = started.elapsed().as_secs_f32() * 1e3;
         let started = std::time::Instant::now();
-        self.renderer.render(&frame, &sim.model().face.mesh, px);
-        self.render_ms = started.elapsed().as_secs_f32() * 1e3;
-        if let Some(bind) = self.blit.bind(&self.renderer) {
+        let face = &sim.model().face.mesh;
+        let picture = match &mut self.relay {
+            Some(relay) => {
+                relay.render(&mut self.renderer, &frame, face, px);
+                self.render_ms = started.elapsed().as_secs_f32() * 1e3;
+                relay.receive(&self.renderer).unwrap_or_else(|e| {
+                    tracing::warn!(error = %e, "the view's picture did not arrive");
+                    None
+                })
+            }
+            None => {
+                self.renderer.render(&frame, face, px);
+                self.render_ms = started.elapsed().as_secs_f32() * 1e3;
+                self.renderer.color_texture()
+            }
+        };
+        if let Some(picture) = picture {
             ui.painter().add(egui_wgpu::Callback::new_paint_callback(
                 rect,
-                BlitPaint(bind),
+                BlitPaint(self.blit.bind(picture)),
             ));
         }
         ui.allocate_rect(rect, egui::Sense::click_and_drag());

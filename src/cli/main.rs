@@ -53,26 +53,6 @@ fn verdict(r: Result<bool>) -> ExitCode {
     }))
 }
 
-/// On Mesa's software rasteriser (lavapipe, llvmpipe), one rasteriser
-/// thread more than the machine has cores, unless `LP_NUM_THREADS` says
-/// otherwise (Mesa's default is one a core). A window's frame is a chain:
-/// this thread describing and recording it, the driver's queue thread
-/// shading vertices and binning triangles, the rasteriser threads shading
-/// pixels, the X server copying the picture. Each waits on the one before,
-/// and with a thread a core the cores stood idle a quarter of the time.
-/// Measured at 1280x720 on two cores, render scale 0.5, alternated: first
-/// person 69.6 / 71.4 / 71.4 fps against 70.5 / 69.1 / 69.6 with two
-/// threads; orbit view 67.9 / 66.6 / 67.8 against 63.2 / 62.5 / 65.6. Four
-/// threads gained no more. A GPU's driver ignores the variable.
-fn one_more_rasteriser_thread() {
-    if std::env::var_os("LP_NUM_THREADS").is_none()
-        && let Ok(cores) = std::thread::available_parallelism()
-    {
-        // SAFETY: first thing in main, before any other thread exists.
-        unsafe { std::env::set_var("LP_NUM_THREADS", (cores.get() + 1).to_string()) };
-    }
-}
-
 fn main() -> ExitCode {
     let cli = Cli::parse();
     if matches!(
@@ -91,9 +71,6 @@ fn main() -> ExitCode {
         // "XDG_RUNTIME_DIR is invalid" error on success. Turn it off.
         // SAFETY: first thing in main, before any other thread exists.
         unsafe { std::env::set_var("NODEVICE_SELECT", "1") };
-    }
-    if cli.command.is_none() {
-        one_more_rasteriser_thread();
     }
     tracing_subscriber::fmt()
         .with_env_filter(

@@ -16,8 +16,6 @@
 
 use eframe::egui::{Color32, Rgba};
 
-use super::gpu::Renderer;
-
 /// At most this many panels a frame (more are dropped: the scoreboard
 /// uses up to seven). The shader's array is this long (prepended to
 /// `blit.wgsl`).
@@ -60,11 +58,14 @@ pub struct Blit {
     /// The target decodes sRGB itself (so it is handed linear texels and
     /// colours).
     srgb_target: bool,
+    /// The window's device and queue (clones of the handles).
+    device: wgpu::Device,
+    queue: wgpu::Queue,
 }
 
 impl Blit {
-    /// A blit into passes on targets of `format`.
-    pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Blit {
+    /// A blit into passes on targets of `format` on `device`.
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, format: wgpu::TextureFormat) -> Blit {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("shisen blit"),
             source: wgpu::ShaderSource::Wgsl(
@@ -170,13 +171,15 @@ impl Blit {
             sampler,
             panels,
             srgb_target: format.is_srgb(),
+            device: device.clone(),
+            queue: queue.clone(),
         }
     }
 
     /// Lay `panels` over the picture from the next submission on (the
     /// first [`MAX_PANELS`]), drawn into a view covering `view` (min, max,
     /// window pixels).
-    pub fn set_panels(&self, queue: &wgpu::Queue, view: [[f32; 2]; 2], panels: &[Panel]) {
+    pub fn set_panels(&self, view: [[f32; 2]; 2], panels: &[Panel]) {
         let [min, max] = view;
         let mut u = PanelsUniform {
             view: [
@@ -203,13 +206,13 @@ impl Blit {
                 [p.radius, 0.0, 0.0, 0.0],
             ];
         }
-        queue.write_buffer(&self.panels, 0, bytemuck::bytes_of(&u));
+        self.queue
+            .write_buffer(&self.panels, 0, bytemuck::bytes_of(&u));
     }
 
-    /// What [`BlitBind::draw`] needs to draw `renderer`'s last picture
-    /// (none before the first render).
-    pub fn bind(&self, renderer: &Renderer) -> Option<BlitBind> {
-        let color = renderer.color_texture()?;
+    /// What [`BlitBind::draw`] needs to draw `color` (a picture of the
+    /// renderer's colour format on the blit's device).
+    pub fn bind(&self, color: &wgpu::Texture) -> BlitBind {
         let view = color.create_view(&wgpu::TextureViewDescriptor {
             // The target encodes sRGB itself, or takes the bytes as they are.
             format: Some(if self.srgb_target {
@@ -219,31 +222,29 @@ impl Blit {
             }),
             ..Default::default()
         });
-        let group = renderer
-            .device()
-            .create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("shisen blit"),
-                layout: &self.layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: wgpu::BindingResource::TextureView(&view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: wgpu::BindingResource::Sampler(&self.sampler),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: self.panels.as_entire_binding(),
-                    },
-                ],
-            });
-        Some(BlitBind {
+        let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("shisen blit"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::Sampler(&self.sampler),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: self.panels.as_entire_binding(),
+                },
+            ],
+        });
+        BlitBind {
             pipeline: self.pipeline.clone(),
             panel_pipeline: self.panel_pipeline.clone(),
             group,
-        })
+        }
     }
 }
 

@@ -688,6 +688,20 @@ impl Renderer {
     /// shell, for the shadow) index [`Frame::face`]. Submits the work; the
     /// result is in [`Renderer::color_texture`].
     pub fn render(&mut self, frame: &Frame, face: &HeadMesh, size: (u32, u32)) {
+        self.render_then(frame, face, size, |_, _| ());
+    }
+
+    /// [`Renderer::render`], with `then` recording more work after the
+    /// frame's into the same submission (given the encoder and the
+    /// picture): on lavapipe a second submission waits for the first to
+    /// finish, one does not.
+    pub fn render_then(
+        &mut self,
+        frame: &Frame,
+        face: &HeadMesh,
+        size: (u32, u32),
+        then: impl FnOnce(&mut wgpu::CommandEncoder, &wgpu::Texture),
+    ) -> wgpu::SubmissionIndex {
         self.ensure_target(size);
         for d in &frame.draws {
             if let MeshKey::Capsule {
@@ -892,7 +906,10 @@ impl Renderer {
                 pass.draw(0..frame.lines.len() as u32, 0..1);
             }
         }
-        self.queue.submit([enc.finish()]);
+        if let Some(target) = &self.target {
+            then(&mut enc, &target.color);
+        }
+        self.queue.submit([enc.finish()])
     }
 
     /// The GPU mesh of a key (a dynamic one once uploaded).

@@ -18,6 +18,7 @@ mod frame;
 pub mod geometry;
 mod gpu;
 mod lod;
+mod relay;
 mod ring;
 
 pub use blit::{Blit, BlitBind, MAX_PANELS, Panel};
@@ -25,6 +26,7 @@ pub use camera::{Camera, View};
 pub use draw::{Draw, Label, LineVertex, Material, MeshKey};
 pub use frame::{Frame, Overlays, face_offset};
 pub use gpu::{COLOR_FORMAT, COLOR_FORMAT_UNORM, RenderError, Renderer};
+pub use relay::Relay;
 
 use std::path::Path;
 
