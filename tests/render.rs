@@ -12,7 +12,7 @@ use glam::Vec2;
 use shisen::physics::body::Seg;
 use shisen::scene::LoadedScene;
 use shisen::sim::{DT, Sim};
-use shisen_app::render::{Camera, Headless, Overlays, View};
+use shisen_app::render::{Camera, Frame, Headless, Overlays, View};
 
 const SIZE: (u32, u32) = (800, 800);
 
@@ -139,6 +139,38 @@ fn rendering_is_deterministic_and_orbit_view_works() {
     assert_eq!(a.as_raw(), b.as_raw(), "same state, same pixels");
     let distinct: std::collections::HashSet<_> = a.pixels().map(|p| p.0).collect();
     assert!(distinct.len() > 50, "picture is nearly blank");
+}
+
+/// The window's view on a software rasteriser is drawn on a device of its
+/// own and handed to the window's device a frame later: the picture that
+/// arrives is the previous frame's, whole (rows of a width whose bytes are
+/// not a multiple of the copy alignment), and none before the second.
+#[test]
+#[ignore = "needs a graphics adapter: cargo test --test render -- --ignored"]
+fn the_relay_hands_over_the_previous_frame_whole() {
+    let gpu = gpu();
+    let (mut own, mut relay) = gpu.relay().expect("a second device");
+    let mut sim = LoadedScene::default_scene().sim();
+    run_to(&mut sim, 0.3);
+    let face = &sim.model().face.mesh;
+    let size = (150, 100);
+    let aspect = size.0 as f32 / size.1 as f32;
+    let first = Frame::build(&sim, View::FACE, Overlays::default(), aspect);
+    let second = Frame::build(&sim, View::ORBIT, Overlays::default(), aspect);
+    relay.render(&mut own, &first, face, size);
+    assert!(relay.receive(&own).unwrap().is_none(), "nothing yet");
+    relay.render(&mut own, &second, face, size);
+    let second_drawn = own.read_rgba().unwrap();
+    let shown = relay.receive(&own).unwrap().expect("the first picture");
+    let got = gpu.renderer.read_texture(shown).unwrap();
+    own.render(&first, face, size);
+    let first_drawn = own.read_rgba().unwrap();
+    assert_ne!(first_drawn.as_raw(), second_drawn.as_raw(), "two views");
+    assert_eq!(got.dimensions(), first_drawn.dimensions());
+    assert!(
+        got.as_raw() == first_drawn.as_raw(),
+        "the relayed picture is not the first frame's"
+    );
 }
 
 #[test]

@@ -99,7 +99,8 @@ impl RenderScale {
 }
 
 impl Viewport {
-    /// A viewport on eframe's device.
+    /// A viewport in eframe's window (on its device, or on a software
+    /// rasteriser on a device of its own: [`Relay`]).
     pub fn new(rs: &egui_wgpu::RenderState, view: View) -> Self {
         let software = rs.adapter.get_info().device_type == wgpu::DeviceType::Cpu;
         // On a software rasteriser the view is drawn on a device of its

@@ -955,7 +955,13 @@ impl Renderer {
     /// Copy the last render back to the CPU (blocks until the GPU is done).
     pub fn read_rgba(&self) -> Result<image::RgbaImage, RenderError> {
         let target = self.target.as_ref().ok_or(RenderError::NothingRendered)?;
-        let (w, h) = target.size;
+        self.read_texture(&target.color)
+    }
+
+    /// Copy a picture of this renderer's device (in its colour format,
+    /// with `COPY_SRC` use) back to the CPU (blocks until the GPU is done).
+    pub fn read_texture(&self, texture: &wgpu::Texture) -> Result<image::RgbaImage, RenderError> {
+        let (w, h) = (texture.width(), texture.height());
         let row = w * 4;
         let padded =
             row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
@@ -971,7 +977,7 @@ impl Renderer {
                 label: Some("shisen readback"),
             });
         enc.copy_texture_to_buffer(
-            target.color.as_image_copy(),
+            texture.as_image_copy(),
             wgpu::TexelCopyBufferInfo {
                 buffer: &buffer,
                 layout: wgpu::TexelCopyBufferLayout {

@@ -38,6 +38,7 @@ pub struct Headless {
     pub info: wgpu::AdapterInfo,
     /// The renderer.
     pub renderer: Renderer,
+    adapter: wgpu::Adapter,
 }
 
 impl Headless {
@@ -81,7 +82,15 @@ impl Headless {
         Ok(Headless {
             renderer: Renderer::new(&adapter, &device, &queue),
             info,
+            adapter,
         })
+    }
+
+    /// A window's renderer on a device of its own, whose pictures reach
+    /// this renderer's device through a [`Relay`], as the window's view
+    /// does on a software rasteriser.
+    pub fn relay(&self) -> Result<(Renderer, Relay), RenderError> {
+        Relay::open(&self.adapter, self.renderer.device(), self.renderer.queue())
     }
 
     /// Render the current state of `sim` from `view` at `size` pixels and

@@ -177,7 +177,9 @@ impl Relay {
                 sample_count: 1,
                 dimension: wgpu::TextureDimension::D2,
                 format: COLOR_FORMAT,
-                usage: wgpu::TextureUsages::COPY_DST | wgpu::TextureUsages::TEXTURE_BINDING,
+                usage: wgpu::TextureUsages::COPY_DST
+                    | wgpu::TextureUsages::COPY_SRC
+                    | wgpu::TextureUsages::TEXTURE_BINDING,
                 view_formats: &[COLOR_FORMAT_UNORM],
             });
             self.shown = Some((texture, slot.size));
