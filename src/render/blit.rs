@@ -111,9 +111,6 @@ impl Blit {
             label: Some("shisen blit"),
             mag_filter: wgpu::FilterMode::Linear,
             min_filter: wgpu::FilterMode::Linear,
-            // One level: no level of detail to work out per pixel.
-            lod_min_clamp: 0.0,
-            lod_max_clamp: 0.0,
             ..Default::default()
         });
         let panels = device.create_buffer(&wgpu::BufferDescriptor {
