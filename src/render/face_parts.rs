@@ -492,9 +492,13 @@ const HAIR: [f32; 4] = {
 /// silhouette of hair and a surface whose strands catch the light. One
 /// lifted vertex per face vertex (the vertex colour's alpha carries its
 /// height above the hairline, m, where the shader cuts the shell) and
-/// the triangles' indices into them, face frame; the indices depend on
-/// the rest paint only, so they are the same every frame.
-pub(super) fn hair_shell(triangles: &[[u32; 3]], face: &[Vertex]) -> (Vec<Vertex>, Vec<u32>) {
+/// the indices into them of the triangles of each of the face's `levels`
+/// of detail (the fine one and the middle one), face frame; the indices
+/// depend on the rest paint only, so they are the same every frame.
+pub(super) fn hair_shell(
+    levels: [&[[u32; 3]]; 2],
+    face: &[Vertex],
+) -> (Vec<Vertex>, [Vec<u32>; 2]) {
     let height = |v: &Vertex| shisen_face::appearance::hair_height(&v.paint);
     let lifted = face
         .iter()
@@ -506,14 +510,16 @@ pub(super) fn hair_shell(triangles: &[[u32; 3]], face: &[Vertex]) -> (Vec<Vertex
             Vertex::coloured(p + n * depth, n, [HAIR[0], HAIR[1], HAIR[2], h])
         })
         .collect();
-    let indices = triangles
-        .iter()
-        .filter(|t| {
-            t.iter()
-                .any(|&i| height(&face[i as usize]) >= -HAIRLINE_WOBBLE)
-        })
-        .flatten()
-        .copied()
-        .collect();
+    let indices = levels.map(|triangles| {
+        triangles
+            .iter()
+            .filter(|t| {
+                t.iter()
+                    .any(|&i| height(&face[i as usize]) >= -HAIRLINE_WOBBLE)
+            })
+            .flatten()
+            .copied()
+            .collect()
+    });
     (lifted, indices)
 }

@@ -44,8 +44,9 @@ pub struct Frame {
     /// ([`MeshKey::Lashes`]).
     pub lashes: Vec<Vertex>,
     /// The VH's hair standing off its scalp, face frame, and the
-    /// triangles' indices into it ([`MeshKey::HairShell`]).
-    pub hair: (Vec<Vertex>, Vec<u32>),
+    /// triangles' indices into it at the face's fine and middle levels of
+    /// detail ([`MeshKey::HairShell`]).
+    pub hair: (Vec<Vertex>, [Vec<u32>; 2]),
     /// The VH's posed body, world frame ([`MeshKey::Body`], indexed by
     /// `Looks::indices`).
     pub body: Vec<Vertex>,
@@ -286,7 +287,8 @@ impl Frame {
             color: WHITE,
             material: Material::Hair,
         });
-        let hair = hair_shell(&sim.model().face.mesh.triangles, &face);
+        let mesh = &sim.model().face.mesh;
+        let hair = hair_shell([&mesh.triangles, &mesh.medium], &face);
         draws.push(Draw {
             mesh: MeshKey::HairShell,
             model: face_frame,

@@ -107,12 +107,12 @@ struct GpuMesh {
 }
 
 impl GpuMesh {
-    /// The index buffer of level of detail `level` (0 the fine one), if
-    /// the mesh has it.
-    fn level(&self, level: usize) -> Option<&wgpu::Buffer> {
+    /// The index buffer of level of detail `level` (0 the fine one) and
+    /// its index count, if the mesh has it.
+    fn level(&self, level: usize) -> Option<(&wgpu::Buffer, u32)> {
         match level {
-            0 => Some(&self.indices),
-            l => self.coarser.get(l - 1).map(|(indices, _)| indices),
+            0 => Some((&self.indices, self.count)),
+            l => self.coarser.get(l - 1).map(|(indices, n)| (indices, *n)),
         }
     }
 }
@@ -717,15 +717,30 @@ impl Renderer {
         self.dynamic_mesh(
             MeshKey::Face,
             &frame.face,
-            &[face.triangles.as_flattened(), face.coarse.as_flattened()],
+            &[
+                face.triangles.as_flattened(),
+                face.medium.as_flattened(),
+                face.coarse.as_flattened(),
+            ],
         );
         let lashes: Vec<u32> = (0..frame.lashes.len() as u32).collect();
         self.dynamic_mesh(MeshKey::Lashes, &frame.lashes, &[&lashes]);
-        self.dynamic_mesh(MeshKey::HairShell, &frame.hair.0, &[&frame.hair.1]);
+        let [hair, hair_medium] = &frame.hair.1;
+        self.dynamic_mesh(MeshKey::HairShell, &frame.hair.0, &[hair, hair_medium]);
         // The bodies by pieces: those in view, each at its level of detail.
         let looks = Looks::of(&frame.plan);
         let cam = &frame.camera;
         let sight = Sight::new(cam.view_proj(), cam.eye, cam.fov_y, size.1);
+        // The head (the face and its hair) at its middle level of detail
+        // where that departs from the fine one by under a pixel.
+        let head_level = frame
+            .draws
+            .iter()
+            .find(|d| d.mesh == MeshKey::Face)
+            .map_or(0, |d| {
+                let (centre, radius) = bounding_sphere(&face.positions);
+                sight.level(face.medium_error, d.model.transform_point3(centre), radius)
+            });
         let mut body_runs = Vec::new();
         for (key, vertices, part) in [
             (MeshKey::Body, &frame.body, AvatarPart::Whole),
@@ -887,12 +902,19 @@ impl Renderer {
                 pass.set_vertex_buffer(0, mesh.vertices.slice(..));
                 let runs = body_runs.iter().find(|(k, _)| *k == d.mesh);
                 let Some((_, runs)) = runs else {
-                    pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-                    pass.draw_indexed(0..mesh.count, 0, 0..1);
+                    let level = match d.mesh {
+                        MeshKey::Face | MeshKey::HairShell => head_level,
+                        _ => 0,
+                    };
+                    let Some((indices, count)) = mesh.level(level) else {
+                        continue;
+                    };
+                    pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
+                    pass.draw_indexed(0..count, 0, 0..1);
                     continue;
                 };
                 for run in runs {
-                    let Some(indices) = mesh.level(run.level) else {
+                    let Some((indices, _)) = mesh.level(run.level) else {
                         continue;
                     };
                     pass.set_index_buffer(indices.slice(..), wgpu::IndexFormat::Uint32);
@@ -1016,6 +1038,20 @@ impl Renderer {
         image::RgbaImage::from_raw(w, h, pixels)
             .ok_or_else(|| RenderError::Readback("short image".into()))
     }
+}
+
+/// A sphere round `points`: the centre of their box and the farthest
+/// point's distance from it.
+fn bounding_sphere(points: &[Vec3]) -> (Vec3, f32) {
+    let (min, max) = points
+        .iter()
+        .fold((Vec3::MAX, Vec3::MIN), |(a, b), p| (a.min(*p), b.max(*p)));
+    let centre = (min + max) / 2.0;
+    let radius = points
+        .iter()
+        .map(|p| p.distance(centre))
+        .fold(0.0, f32::max);
+    (centre, radius)
 }
 
 /// The top light's view and orthographic projection over a sphere of

@@ -54,6 +54,13 @@ impl Sight {
         error / distance * self.px_per_radian < LOD_PIXELS
     }
 
+    /// The level of detail of a mesh with a middle level `error` metres
+    /// off its fine one, within a sphere: 1 (the middle one) where that is
+    /// under [`LOD_PIXELS`] at the sphere's nearest, else 0.
+    pub fn level(&self, error: f32, centre: Vec3, radius: f32) -> usize {
+        usize::from(self.coarse_enough(error, centre, radius))
+    }
+
     /// Whether a unit sphere drawn with `model` may be drawn as the coarse
     /// sphere ([`BLOB_ERROR`] of its radius off).
     pub fn coarse_sphere(&self, model: Mat4) -> bool {

@@ -249,6 +249,8 @@ pub fn head_from_parts(
         lid_zone: lid_zone(&positions, landmarks.eye_centre),
         positions,
         coarse: triangles.clone(),
+        medium: triangles.clone(),
+        medium_error: 0.0,
         triangles,
         landmarks,
         rims: Rims::default(),

@@ -136,6 +136,16 @@ pub struct HeadMesh {
     pub normals: Vec<Vec3>,
     /// Counter-clockwise (outward) triangles.
     pub triangles: Vec<[u32; 3]>,
+    /// A middle level of detail over the same vertices: every other row
+    /// and column of the grid away from the eyes, brows and mouth, which
+    /// keep the fine grid (their openings, lids, lips and painted borders
+    /// hang on it), the two meeting without cracks; about half the
+    /// triangles. An imported mesh's own triangles.
+    pub medium: Vec<[u32; 3]>,
+    /// How far the middle level departs from the fine one at rest: the
+    /// largest distance of a vertex it skips from the point of its
+    /// surface that stands for it, metres (0 for an imported mesh).
+    pub medium_error: f32,
     /// A coarse level of detail over the same vertices: the head's closed
     /// shell (its openings spanned) through every third row and column of
     /// the grid, about a ninth of the triangles; for what needs the head's
@@ -495,6 +505,21 @@ impl HeadMesh {
         }
         let normals = compute_normals(&positions, &triangles);
         let coarse = coarse_shell(rows, cols, 3, idx);
+        let kept: std::collections::HashSet<u32> = [
+            &rims.upper_lid[0],
+            &rims.lower_lid[0],
+            &rims.upper_lid[1],
+            &rims.lower_lid[1],
+            &rims.upper_lip,
+            &rims.lower_lip,
+        ]
+        .into_iter()
+        .flatten()
+        .copied()
+        .collect();
+        let (medium, medium_error) = medium_level(rows, cols, &positions, &triangles, idx, |v| {
+            kept.contains(&v) || detailed(positions[v as usize])
+        });
 
         let landmarks = landmarks(&positions, &rims);
         let lid_zone = lid_zone(&positions, landmarks.eye_centre);
@@ -502,12 +527,133 @@ impl HeadMesh {
             positions,
             normals,
             triangles,
+            medium,
+            medium_error,
             coarse,
             landmarks,
             rims,
             lid_zone,
         }
     }
+}
+
+/// Where the middle level of detail keeps the fine grid (rest positions):
+/// round each eye with its lids and brow, round the mouth with its lips,
+/// along the nose (whose ridge is a few columns wide), and over the ears'
+/// bumps (where the grid bends most).
+fn detailed(p: Vec3) -> bool {
+    let eye = ((p.x.abs() - EYE_X) / 0.026).powi(2) + ((p.y - 0.008) / 0.030).powi(2);
+    let mouth = (p.x / 0.040).powi(2) + ((p.y - MOUTH_Y) / 0.018).powi(2);
+    let nose = p.x.abs() < 0.024 && p.y < NASION_Y + 0.008 && p.y > NOSE_BASE_Y - 0.008;
+    let ear = ((p.y + 0.015) / 0.036).powi(2) + ((p.z + 0.085) / 0.022).powi(2);
+    (p.z > Z_C && (eye < 1.0 || mouth < 1.0 || nose)) || ear < 1.0
+}
+
+/// The middle level of detail of a grid of `rows` bands and `cols`
+/// columns whose fine `triangles` are the poles' fans, then two a cell
+/// row by row (as [`HeadMesh::generate`] lays them): cells in blocks of two
+/// by two, a block drawn as two triangles through its corners where none
+/// of its nine vertices is `kept`, else as its fine cells. A coarse block
+/// beside fine cells takes the midpoint of the side they share, fanned
+/// from its centre, so that no edge ends in the middle of another (no
+/// crack). Returns the triangles and the level's error: the largest
+/// distance of a skipped vertex from the midpoint of the coarse edge that
+/// stands for it.
+fn medium_level(
+    rows: usize,
+    cols: usize,
+    positions: &[Vec3],
+    triangles: &[[u32; 3]],
+    idx: impl Fn(usize, usize) -> u32,
+    kept: impl Fn(u32) -> bool,
+) -> (Vec<[u32; 3]>, f32) {
+    // Cell (band b, column j), b in 1..rows - 1: its two fine triangles.
+    let cell = |b: usize, j: usize| {
+        let k = 2 * cols + 2 * ((b - 1) * cols + j);
+        [triangles[k], triangles[k + 1]]
+    };
+    // Blocks: bands b0, b0 + 1 (b0 odd) and columns j0, j0 + 1 (j0 even).
+    let coarse = |b0: usize, j0: usize| {
+        b0 % 2 == 1
+            && b0 + 1 < rows - 1
+            && (0..3).all(|r| (0..3).all(|c| !kept(idx(b0 + r, (j0 + c) % cols))))
+    };
+    // The poles' fans as they are.
+    let mut out: Vec<[u32; 3]> = triangles[..2 * cols].to_vec();
+    let mut error = 0.0f32;
+    let at = |r: usize, c: usize| positions[idx(r, c) as usize];
+    for b0 in (1..rows - 1).step_by(2) {
+        for j0 in (0..cols).step_by(2) {
+            if !coarse(b0, j0) {
+                for b in b0..(b0 + 2).min(rows - 1) {
+                    for j in j0..j0 + 2 {
+                        out.extend(cell(b, j));
+                    }
+                }
+                continue;
+            }
+            let (r1, r2, c1, c2) = (b0 + 1, b0 + 2, j0 + 1, j0 + 2);
+            // Corners, the sides' midpoints, the centre.
+            let (a, b, c, d) = (idx(b0, j0), idx(b0, c2), idx(r2, j0), idx(r2, c2));
+            let (top, bottom, left, right, centre) = (
+                idx(b0, c1),
+                idx(r2, c1),
+                idx(r1, j0),
+                idx(r1, c2),
+                idx(r1, c1),
+            );
+            // A side takes its midpoint where a fine neighbour shares it.
+            let fine_top = b0 < 2 || !coarse(b0 - 2, j0);
+            let fine_bottom = !coarse(b0 + 2, j0);
+            let fine_left = !coarse(b0, (j0 + cols - 2) % cols);
+            let fine_right = !coarse(b0, (j0 + 2) % cols);
+            let mid = |p: Vec3, q: Vec3, m: Vec3| m.distance((p + q) / 2.0);
+            let (pa, pb, pc, pd) = (at(b0, j0), at(b0, c2), at(r2, j0), at(r2, c2));
+            for (fine, m, p, q) in [
+                (fine_top, at(b0, c1), pa, pb),
+                (fine_bottom, at(r2, c1), pc, pd),
+                (fine_left, at(r1, j0), pa, pc),
+                (fine_right, at(r1, c2), pb, pd),
+            ] {
+                if !fine {
+                    error = error.max(mid(p, q, m));
+                }
+            }
+            if !(fine_top || fine_bottom || fine_left || fine_right) {
+                // Two triangles, the diagonal mirrored across the midline
+                // as the fine grid's is.
+                let x = at(r1, c1);
+                if j0 < cols / 2 {
+                    error = error.max(mid(pb, pc, x));
+                    out.extend([[a, c, b], [b, c, d]]);
+                } else {
+                    error = error.max(mid(pa, pd, x));
+                    out.extend([[a, c, d], [a, d, b]]);
+                }
+                continue;
+            }
+            // A fan from the centre round the block, in the fine
+            // triangles' turning sense: down the left, along the bottom,
+            // up the right, back along the top.
+            let ring: Vec<u32> = [
+                (a, true),
+                (left, fine_left),
+                (c, true),
+                (bottom, fine_bottom),
+                (d, true),
+                (right, fine_right),
+                (b, true),
+                (top, fine_top),
+            ]
+            .into_iter()
+            .filter_map(|(v, on)| on.then_some(v))
+            .collect();
+            for k in 0..ring.len() {
+                out.push([centre, ring[k], ring[(k + 1) % ring.len()]]);
+            }
+        }
+    }
+    (out, error)
 }
 
 /// The grid's closed shell through every `step`-th row and column (the
@@ -626,8 +772,13 @@ mod tests {
 
     #[test]
     fn watertight_except_openings_and_oriented() {
-        for rows in [32, 60] {
-            let m = HeadMesh::generate(MeshParams { rows });
+        for (rows, level) in [32, 47, 60].into_iter().flat_map(|r| [(r, 0), (r, 1)]) {
+            let mut m = HeadMesh::generate(MeshParams { rows });
+            // The middle level of detail too: no crack where its coarse
+            // blocks meet the fine cells, its openings the fine ones.
+            if level == 1 {
+                m.triangles = m.medium.clone();
+            }
             let eu = edge_use(&m.triangles);
             let mut boundary = Vec::new();
             for (e, (f, b)) in &eu {
@@ -665,6 +816,59 @@ mod tests {
                     .iter()
                     .all(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
             );
+        }
+    }
+
+    #[test]
+    fn middle_level_keeps_the_openings_and_halves_the_rest() {
+        for rows in [32, 47, 60] {
+            let m = HeadMesh::generate(MeshParams { rows });
+            let n = m.medium.len() as f32 / m.triangles.len() as f32;
+            assert!((0.3..0.7).contains(&n), "rows {rows}: {n} of the triangles");
+            // Every fine triangle round the eyes, brows and mouth is kept.
+            let kept: std::collections::HashSet<[u32; 3]> = m.medium.iter().copied().collect();
+            let near = m
+                .triangles
+                .iter()
+                .filter(|t| t.iter().all(|&i| detailed(m.positions[i as usize])));
+            for t in near {
+                assert!(kept.contains(t), "rows {rows}: {t:?} not kept");
+            }
+            // The error is the skipped vertices' distance, a few mm on a
+            // grid of this size (the coarse edges are chords of a curved
+            // surface), none where nothing is skipped.
+            assert!(
+                m.medium_error > 1e-4 && m.medium_error < 0.01,
+                "rows {rows}: error {} m",
+                m.medium_error
+            );
+            // Left-right symmetric, as the fine grid is: each triangle's
+            // mirror image (by vertex position) is a triangle too.
+            let key = |p: Vec3| {
+                (
+                    (p.x * 1e5).round() as i64,
+                    (p.y * 1e5).round() as i64,
+                    (p.z * 1e5).round() as i64,
+                )
+            };
+            let by_pos: HashMap<_, u32> = m
+                .positions
+                .iter()
+                .enumerate()
+                .map(|(i, p)| (key(*p), i as u32))
+                .collect();
+            let mirrored = m.medium.iter().filter(|t| {
+                let [a, b, c] =
+                    t.map(|i| by_pos.get(&key(mirror(m.positions[i as usize]))).copied());
+                match (a, b, c) {
+                    (Some(a), Some(b), Some(c)) => [[a, c, b], [c, b, a], [b, a, c]]
+                        .iter()
+                        .any(|u| kept.contains(u)),
+                    _ => false,
+                }
+            });
+            let share = mirrored.count() as f32 / m.medium.len() as f32;
+            assert!(share > 0.97, "rows {rows}: {share} mirrored");
         }
     }
 
