@@ -30,7 +30,8 @@ pub struct Viewport {
     /// CPU time of the last frame's scene description (pose, skin, face
     /// deformation), ms.
     pub build_ms: f32,
-    /// CPU time of the last render call (recording and submitting), ms.
+    /// CPU time of the last render call (recording and submitting; not
+    /// the wait for the relayed picture), ms.
     pub render_ms: f32,
     /// Where the view was drawn last frame, and its camera.
     last: Option<(egui::Rect, Camera)>,
@@ -256,10 +257,10 @@ impl Viewport {
             Some(relay) => {
                 relay.render(&mut self.renderer, &frame, face, px);
                 self.render_ms = started.elapsed().as_secs_f32() * 1e3;
-                relay.receive(&self.renderer).unwrap_or_else(|e| {
+                if let Err(e) = relay.receive(&self.renderer) {
                     tracing::warn!(error = %e, "the view's picture did not arrive");
-                    None
-                })
+                }
+                relay.shown()
             }
             None => {
                 self.renderer.render(&frame, face, px);

@@ -55,8 +55,9 @@ impl Sight {
     }
 
     /// The level of detail of a mesh with a middle level `error` metres
-    /// off its fine one, within a sphere: 1 (the middle one) where that is
-    /// under [`LOD_PIXELS`] at the sphere's nearest, else 0.
+    /// off its fine one (as measured at rest), within a sphere: 1 (the
+    /// middle one) where that is under [`LOD_PIXELS`] at the sphere's
+    /// nearest, else 0.
     pub fn level(&self, error: f32, centre: Vec3, radius: f32) -> usize {
         usize::from(self.coarse_enough(error, centre, radius))
     }

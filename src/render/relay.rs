@@ -13,7 +13,7 @@
 //! window's device copies the view of the frame before into the window
 //! and presents it: the chain becomes two that overlap. The picture crosses between the
 //! devices through the CPU (read back into a mapped buffer, written into
-//! a texture of the window's device: two copies of under a megabyte at
+//! a texture of the window's device: a few copies of under a megabyte at
 //! the window's usual render scale). The cost is one frame of latency:
 //! the window shows the view of the previous step.
 
@@ -145,70 +145,96 @@ impl Relay {
         self.sent += 1;
     }
 
-    /// The picture sent the frame before the last [`Relay::send`], on the
-    /// window's device (waits for the renderer's device to finish it,
-    /// which it has in the usual case); none before the second frame.
-    pub fn receive(&mut self, renderer: &Renderer) -> Result<Option<&wgpu::Texture>, RenderError> {
-        if self.sent < 2 {
-            return Ok(None);
-        }
-        let Some(slot) = self.slots[(self.sent % 2) as usize].as_mut() else {
-            return Ok(None);
+    /// Hand the picture rendered the frame before the last
+    /// [`Relay::render`] to the window's device ([`Relay::shown`] from
+    /// then on), waiting for the renderer's device to finish it (which it
+    /// has in the usual case). Nothing before the second frame. On an
+    /// error that picture is dropped, its buffer with it, and the one
+    /// before stays shown.
+    pub fn receive(&mut self, renderer: &Renderer) -> Result<(), RenderError> {
+        let k = (self.sent % 2) as usize;
+        let Some(slot) = self.slots[k].as_mut() else {
+            return Ok(());
         };
         let Some(index) = slot.pending.take() else {
-            return Ok(self.shown.as_ref().map(|(t, _)| t));
+            return Ok(());
         };
-        renderer
-            .device()
-            .poll(wgpu::PollType::Wait {
-                submission_index: Some(index),
-                timeout: None,
-            })
-            .map_err(|e| RenderError::Readback(e.to_string()))?;
-        if self.shown.as_ref().is_none_or(|(_, s)| *s != slot.size) {
-            let texture = self.device.create_texture(&wgpu::TextureDescriptor {
-                label: Some("shisen relayed picture"),
-                size: wgpu::Extent3d {
-                    width: slot.size.0,
-                    height: slot.size.1,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: COLOR_FORMAT,
-                usage: wgpu::TextureUsages::COPY_DST
-                    | wgpu::TextureUsages::COPY_SRC
-                    | wgpu::TextureUsages::TEXTURE_BINDING,
-                view_formats: &[COLOR_FORMAT_UNORM],
-            });
-            self.shown = Some((texture, slot.size));
+        let handed = hand_over(
+            &self.device,
+            &self.queue,
+            &mut self.shown,
+            slot,
+            renderer,
+            index,
+        );
+        match handed {
+            Ok(()) => slot.buffer.unmap(),
+            Err(_) => self.slots[k] = None,
         }
-        let Some((texture, size)) = &self.shown else {
-            return Ok(None);
-        };
-        {
-            let data = slot
-                .buffer
-                .slice(..)
-                .get_mapped_range()
-                .map_err(|e| RenderError::Readback(e.to_string()))?;
-            self.queue.write_texture(
-                texture.as_image_copy(),
-                &data,
-                wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(slot.padded_row),
-                    rows_per_image: Some(size.1),
-                },
-                wgpu::Extent3d {
-                    width: size.0,
-                    height: size.1,
-                    depth_or_array_layers: 1,
-                },
-            );
-        }
-        slot.buffer.unmap();
-        Ok(Some(texture))
+        handed
     }
+
+    /// The picture handed over last, on the window's device.
+    pub fn shown(&self) -> Option<&wgpu::Texture> {
+        self.shown.as_ref().map(|(t, _)| t)
+    }
+}
+
+/// Wait for `slot`'s picture (submission `index` of `renderer`'s device)
+/// and write it into `shown` on the window's `device` (a new texture when
+/// its size changed).
+fn hand_over(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    shown: &mut Option<(wgpu::Texture, (u32, u32))>,
+    slot: &Slot,
+    renderer: &Renderer,
+    index: wgpu::SubmissionIndex,
+) -> Result<(), RenderError> {
+    renderer
+        .device()
+        .poll(wgpu::PollType::Wait {
+            submission_index: Some(index),
+            timeout: None,
+        })
+        .map_err(|e| RenderError::Readback(e.to_string()))?;
+    let extent = wgpu::Extent3d {
+        width: slot.size.0,
+        height: slot.size.1,
+        depth_or_array_layers: 1,
+    };
+    if shown.as_ref().is_none_or(|(_, s)| *s != slot.size) {
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("shisen relayed picture"),
+            size: extent,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: COLOR_FORMAT,
+            usage: wgpu::TextureUsages::COPY_DST
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[COLOR_FORMAT_UNORM],
+        });
+        *shown = Some((texture, slot.size));
+    }
+    let Some((texture, _)) = shown else {
+        return Ok(());
+    };
+    let data = slot
+        .buffer
+        .slice(..)
+        .get_mapped_range()
+        .map_err(|e| RenderError::Readback(e.to_string()))?;
+    queue.write_texture(
+        texture.as_image_copy(),
+        &data,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(slot.padded_row),
+            rows_per_image: Some(slot.size.1),
+        },
+        extent,
+    );
+    Ok(())
 }

@@ -137,14 +137,17 @@ pub struct HeadMesh {
     /// Counter-clockwise (outward) triangles.
     pub triangles: Vec<[u32; 3]>,
     /// A middle level of detail over the same vertices: every other row
-    /// and column of the grid away from the eyes, brows and mouth, which
-    /// keep the fine grid (their openings, lids, lips and painted borders
-    /// hang on it), the two meeting without cracks; about half the
+    /// and column of the grid away from the eyes and brows, the mouth,
+    /// the nose and the ears' bumps, which keep the fine grid (their
+    /// openings, lids, lips and painted borders hang on it, and the grid
+    /// bends most there), the two meeting without cracks; about half the
     /// triangles. An imported mesh's own triangles.
     pub medium: Vec<[u32; 3]>,
     /// How far the middle level departs from the fine one at rest: the
     /// largest distance of a vertex it skips from the point of its
-    /// surface that stands for it, metres (0 for an imported mesh).
+    /// surface that stands for it, metres (0 for an imported mesh). Its
+    /// coarse blocks (cheeks, jaw, scalp) deform with the face, and the
+    /// paint interpolated over them is not counted.
     pub medium_error: f32,
     /// A coarse level of detail over the same vertices: the head's closed
     /// shell (its openings spanned) through every third row and column of
@@ -567,6 +570,11 @@ fn medium_level(
     idx: impl Fn(usize, usize) -> u32,
     kept: impl Fn(u32) -> bool,
 ) -> (Vec<[u32; 3]>, f32) {
+    debug_assert_eq!(
+        triangles.len(),
+        2 * cols * (rows - 1),
+        "the fine grid's layout"
+    );
     // Cell (band b, column j), b in 1..rows - 1: its two fine triangles.
     let cell = |b: usize, j: usize| {
         let k = 2 * cols + 2 * ((b - 1) * cols + j);
@@ -843,7 +851,9 @@ mod tests {
                 m.medium_error
             );
             // Left-right symmetric, as the fine grid is: each triangle's
-            // mirror image (by vertex position) is a triangle too.
+            // mirror image (by vertex position) is a triangle too. (With
+            // an odd row count one block straddles the back's midline and
+            // its diagonal cannot be mirrored.)
             let key = |p: Vec3| {
                 (
                     (p.x * 1e5).round() as i64,
