@@ -106,19 +106,22 @@ impl Viewport {
         let software = rs.adapter.get_info().device_type == wgpu::DeviceType::Cpu;
         // On a software rasteriser the view is drawn on a device of its
         // own, a frame ahead of the window ([`Relay`]).
-        let relayed = software.then(|| {
-            Relay::open(&rs.adapter, &rs.device, &rs.queue)
-                .inspect_err(|e| {
-                    tracing::warn!(error = %e, "the view is drawn on the window's device");
-                })
-                .ok()
-        });
-        let (renderer, relay) = match relayed.flatten() {
-            Some((renderer, relay)) => (renderer, Some(relay)),
-            None => (
+        let (renderer, relay) = match software
+            .then(|| Relay::open(&rs.adapter, &rs.device, &rs.queue))
+            .transpose()
+        {
+            Ok(Some((renderer, relay))) => (renderer, Some(relay)),
+            Ok(None) => (
                 Renderer::for_window(&rs.adapter, &rs.device, &rs.queue),
                 None,
             ),
+            Err(e) => {
+                tracing::warn!(error = %e, "the view is drawn on the window's device");
+                (
+                    Renderer::for_window(&rs.adapter, &rs.device, &rs.queue),
+                    None,
+                )
+            }
         };
         // A software rasteriser starts below full resolution (about 60 fps
         // at 1280x720 on two cores) and finds its level from there. A GPU

@@ -737,7 +737,10 @@ impl Renderer {
             .draws
             .iter()
             .find(|d| d.mesh == MeshKey::Face)
-            .map_or(0, |d| sight.level(face.medium_error, &frame.face, d.model));
+            .map_or(0, |d| {
+                let (centre, radius) = bounding_sphere(&face.positions);
+                sight.level(face.medium_error, d.model.transform_point3(centre), radius)
+            });
         let mut body_runs = Vec::new();
         for (key, vertices, part) in [
             (MeshKey::Body, &frame.body, AvatarPart::Whole),
@@ -982,15 +985,36 @@ impl Renderer {
     pub fn read_texture(&self, texture: &wgpu::Texture) -> Result<image::RgbaImage, RenderError> {
         let (w, h) = (texture.width(), texture.height());
         let row = w * 4;
-        let back = Readback::new(&self.device, (w, h), "shisen readback");
+        let padded =
+            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let buffer = self.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("shisen readback"),
+            size: padded as u64 * h as u64,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         let mut enc = self
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                 label: Some("shisen readback"),
             });
-        back.record(&mut enc, texture);
+        enc.copy_texture_to_buffer(
+            texture.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded),
+                    rows_per_image: None,
+                },
+            },
+            wgpu::Extent3d {
+                width: w,
+                height: h,
+                depth_or_array_layers: 1,
+            },
+        );
         self.queue.submit([enc.finish()]);
-        let (buffer, padded) = (&back.buffer, back.padded_row);
         let slice = buffer.slice(..);
         let (tx, rx) = std::sync::mpsc::channel();
         slice.map_async(wgpu::MapMode::Read, move |r| {
@@ -1016,63 +1040,18 @@ impl Renderer {
     }
 }
 
-/// A buffer the CPU can map that holds a picture of `size` pixels in the
-/// renderer's colour format, its rows padded to the copy alignment.
-pub(super) struct Readback {
-    /// The buffer.
-    pub buffer: wgpu::Buffer,
-    /// Picture size, pixels.
-    pub size: (u32, u32),
-    /// Bytes a row in the buffer.
-    pub padded_row: u32,
-}
-
-impl Readback {
-    /// A buffer on `device` for pictures of `size`.
-    pub fn new(device: &wgpu::Device, size: (u32, u32), label: &str) -> Readback {
-        let padded_row = (size.0 * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
-            * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        Readback {
-            buffer: device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: u64::from(padded_row) * u64::from(size.1),
-                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            }),
-            size,
-            padded_row,
-        }
-    }
-
-    /// The buffer's layout of a picture.
-    pub fn layout(&self) -> wgpu::TexelCopyBufferLayout {
-        wgpu::TexelCopyBufferLayout {
-            offset: 0,
-            bytes_per_row: Some(self.padded_row),
-            rows_per_image: Some(self.size.1),
-        }
-    }
-
-    /// The picture's extent.
-    pub fn extent(&self) -> wgpu::Extent3d {
-        wgpu::Extent3d {
-            width: self.size.0,
-            height: self.size.1,
-            depth_or_array_layers: 1,
-        }
-    }
-
-    /// Record copying `texture` (of this size) into the buffer.
-    pub fn record(&self, enc: &mut wgpu::CommandEncoder, texture: &wgpu::Texture) {
-        enc.copy_texture_to_buffer(
-            texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &self.buffer,
-                layout: self.layout(),
-            },
-            self.extent(),
-        );
-    }
+/// A sphere round `points`: the centre of their box and the farthest
+/// point's distance from it.
+fn bounding_sphere(points: &[Vec3]) -> (Vec3, f32) {
+    let (min, max) = points
+        .iter()
+        .fold((Vec3::MAX, Vec3::MIN), |(a, b), p| (a.min(*p), b.max(*p)));
+    let centre = (min + max) / 2.0;
+    let radius = points
+        .iter()
+        .map(|p| p.distance(centre))
+        .fold(0.0, f32::max);
+    (centre, radius)
 }
 
 /// The top light's view and orthographic projection over a sphere of

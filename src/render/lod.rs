@@ -54,18 +54,12 @@ impl Sight {
         error / distance * self.px_per_radian < LOD_PIXELS
     }
 
-    /// The level of detail of a rigidly placed mesh (its vertices `posed`
-    /// in the frame `model`) whose middle level departs `error` metres from
-    /// its fine one (as measured at rest): 1 (the middle one) where that
-    /// is under [`LOD_PIXELS`] at the mesh's nearest, else 0.
-    pub fn level(&self, error: f32, posed: &[Vertex], model: Mat4) -> usize {
-        let points = || posed.iter().map(|v| Vec3::from_array(v.pos));
-        let (lo, hi) = bounds(points());
-        // The sphere about the box's centre through the farthest vertex
-        // (a head's corners are empty: tighter than the box's).
-        let centre = (lo + hi) / 2.0;
-        let radius = points().map(|p| p.distance(centre)).fold(0.0, f32::max);
-        usize::from(self.coarse_enough(error, model.transform_point3(centre), radius))
+    /// The level of detail of a mesh with a middle level `error` metres
+    /// off its fine one (as measured at rest), within a sphere: 1 (the
+    /// middle one) where that is under [`LOD_PIXELS`] at the sphere's
+    /// nearest, else 0.
+    pub fn level(&self, error: f32, centre: Vec3, radius: f32) -> usize {
+        usize::from(self.coarse_enough(error, centre, radius))
     }
 
     /// Whether a unit sphere drawn with `model` may be drawn as the coarse
@@ -86,23 +80,16 @@ impl Sight {
     }
 }
 
-/// The box round `points`: its least and greatest corners (not finite
-/// for no points).
-fn bounds(points: impl Iterator<Item = Vec3>) -> (Vec3, Vec3) {
-    points.fold((Vec3::MAX, Vec3::MIN), |(lo, hi), p| (lo.min(p), hi.max(p)))
-}
-
 /// The runs to draw of a body posed as `posed`, made of `pieces`, seen in
 /// `sight`: pieces outside it left out, each of the others at the coarsest
 /// level [`LOD_PIXELS`] allows, neighbours at the same level merged.
 pub fn runs(pieces: &[Piece], posed: &[Vertex], sight: &Sight) -> Vec<Run> {
     let mut out: Vec<Run> = Vec::new();
     for piece in pieces {
-        let (lo, hi) = bounds(
-            posed[piece.vertices.start as usize..piece.vertices.end as usize]
-                .iter()
-                .map(|v| Vec3::from_array(v.pos)),
-        );
+        let points = posed[piece.vertices.start as usize..piece.vertices.end as usize]
+            .iter()
+            .map(|v| Vec3::from_array(v.pos));
+        let (lo, hi) = points.fold((Vec3::MAX, Vec3::MIN), |(lo, hi), p| (lo.min(p), hi.max(p)));
         let (centre, radius) = ((lo + hi) / 2.0, (hi - lo).length() / 2.0);
         if !radius.is_finite() || sight.outside(centre, radius) {
             continue;

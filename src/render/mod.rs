@@ -70,7 +70,13 @@ impl Headless {
             }
         }
         let adapter = found.ok_or(RenderError::NoAdapter(last_error))?;
-        let (device, queue) = open_device(&adapter, "shisen headless")?;
+        let (device, queue) =
+            pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+                label: Some("shisen headless"),
+                required_limits:
+                    wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
+                ..Default::default()
+            }))?;
         let info = adapter.get_info();
         tracing::info!(adapter = %info.name, backend = ?info.backend, "headless renderer");
         Ok(Headless {
@@ -104,21 +110,6 @@ impl Headless {
         self.renderer.render(&frame, &sim.model().face.mesh, size);
         self.renderer.read_rgba()
     }
-}
-
-/// A device (and its queue) on `adapter` with the limits the renderer
-/// needs, named `label`.
-fn open_device(
-    adapter: &wgpu::Adapter,
-    label: &str,
-) -> Result<(wgpu::Device, wgpu::Queue), RenderError> {
-    Ok(pollster::block_on(adapter.request_device(
-        &wgpu::DeviceDescriptor {
-            label: Some(label),
-            required_limits: wgpu::Limits::downlevel_defaults().using_resolution(adapter.limits()),
-            ..Default::default()
-        },
-    ))?)
 }
 
 /// Write an image as PNG, whole or not at all

@@ -20,7 +20,7 @@
 use shisen_face::mesh::HeadMesh;
 
 use super::frame::Frame;
-use super::gpu::{COLOR_FORMAT, COLOR_FORMAT_UNORM, Readback, RenderError, Renderer};
+use super::gpu::{COLOR_FORMAT, COLOR_FORMAT_UNORM, RenderError, Renderer};
 
 /// Two read-back buffers (one being filled by the renderer's device while
 /// the other's picture is handed over) and the texture on the window's
@@ -35,11 +35,13 @@ pub struct Relay {
     /// Frames sent.
     sent: u64,
     /// The picture on the window's device.
-    shown: Option<wgpu::Texture>,
+    shown: Option<(wgpu::Texture, (u32, u32))>,
 }
 
 struct Slot {
-    back: Readback,
+    buffer: wgpu::Buffer,
+    size: (u32, u32),
+    padded_row: u32,
     /// A copy into it was submitted (index on the renderer's queue) and
     /// its mapping requested.
     pending: Option<wgpu::SubmissionIndex>,
@@ -72,7 +74,12 @@ impl Relay {
             .ok_or_else(|| {
                 RenderError::NoAdapter(format!("a second instance has no {}", wanted.name))
             })?;
-        let (own_device, own_queue) = super::open_device(&own, "shisen view")?;
+        let (own_device, own_queue) =
+            pollster::block_on(own.request_device(&wgpu::DeviceDescriptor {
+                label: Some("shisen view"),
+                required_limits: wgpu::Limits::downlevel_defaults().using_resolution(own.limits()),
+                ..Default::default()
+            }))?;
         let relay = Relay {
             device: device.clone(),
             queue: queue.clone(),
@@ -96,10 +103,19 @@ impl Relay {
         let slot = &mut self.slots[(self.sent % 2) as usize];
         if slot
             .as_ref()
-            .is_none_or(|s| s.back.size != size || s.pending.is_some())
+            .is_none_or(|s| s.size != size || s.pending.is_some())
         {
+            let padded_row = (size.0 * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT)
+                * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
             *slot = Some(Slot {
-                back: Readback::new(renderer.device(), size, "shisen relay"),
+                buffer: renderer.device().create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("shisen relay"),
+                    size: u64::from(padded_row) * u64::from(size.1),
+                    usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }),
+                size,
+                padded_row,
                 pending: None,
             });
         }
@@ -107,12 +123,24 @@ impl Relay {
             return;
         };
         let index = renderer.render_then(frame, face, size, |enc, color| {
-            slot.back.record(enc, color);
+            enc.copy_texture_to_buffer(
+                color.as_image_copy(),
+                wgpu::TexelCopyBufferInfo {
+                    buffer: &slot.buffer,
+                    layout: wgpu::TexelCopyBufferLayout {
+                        offset: 0,
+                        bytes_per_row: Some(slot.padded_row),
+                        rows_per_image: Some(size.1),
+                    },
+                },
+                wgpu::Extent3d {
+                    width: size.0,
+                    height: size.1,
+                    depth_or_array_layers: 1,
+                },
+            );
         });
-        slot.back
-            .buffer
-            .slice(..)
-            .map_async(wgpu::MapMode::Read, |_| ());
+        slot.buffer.slice(..).map_async(wgpu::MapMode::Read, |_| ());
         slot.pending = Some(index);
         self.sent += 1;
     }
@@ -135,12 +163,12 @@ impl Relay {
             &self.device,
             &self.queue,
             &mut self.shown,
-            &slot.back,
+            slot,
             renderer,
             index,
         );
         match handed {
-            Ok(()) => slot.back.buffer.unmap(),
+            Ok(()) => slot.buffer.unmap(),
             Err(_) => self.slots[k] = None,
         }
         handed
@@ -148,18 +176,18 @@ impl Relay {
 
     /// The picture handed over last, on the window's device.
     pub fn shown(&self) -> Option<&wgpu::Texture> {
-        self.shown.as_ref()
+        self.shown.as_ref().map(|(t, _)| t)
     }
 }
 
-/// Wait for `back`'s picture (submission `index` of `renderer`'s device)
+/// Wait for `slot`'s picture (submission `index` of `renderer`'s device)
 /// and write it into `shown` on the window's `device` (a new texture when
 /// its size changed).
 fn hand_over(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
-    shown: &mut Option<wgpu::Texture>,
-    back: &Readback,
+    shown: &mut Option<(wgpu::Texture, (u32, u32))>,
+    slot: &Slot,
     renderer: &Renderer,
     index: wgpu::SubmissionIndex,
 ) -> Result<(), RenderError> {
@@ -170,11 +198,15 @@ fn hand_over(
             timeout: None,
         })
         .map_err(|e| RenderError::Readback(e.to_string()))?;
-    let texture = match shown {
-        Some(t) if t.size() == back.extent() => t,
-        _ => shown.insert(device.create_texture(&wgpu::TextureDescriptor {
+    let extent = wgpu::Extent3d {
+        width: slot.size.0,
+        height: slot.size.1,
+        depth_or_array_layers: 1,
+    };
+    if shown.as_ref().is_none_or(|(_, s)| *s != slot.size) {
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some("shisen relayed picture"),
-            size: back.extent(),
+            size: extent,
             mip_level_count: 1,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
@@ -183,13 +215,26 @@ fn hand_over(
                 | wgpu::TextureUsages::COPY_SRC
                 | wgpu::TextureUsages::TEXTURE_BINDING,
             view_formats: &[COLOR_FORMAT_UNORM],
-        })),
+        });
+        *shown = Some((texture, slot.size));
+    }
+    let Some((texture, _)) = shown else {
+        return Ok(());
     };
-    let data = back
+    let data = slot
         .buffer
         .slice(..)
         .get_mapped_range()
         .map_err(|e| RenderError::Readback(e.to_string()))?;
-    queue.write_texture(texture.as_image_copy(), &data, back.layout(), back.extent());
+    queue.write_texture(
+        texture.as_image_copy(),
+        &data,
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(slot.padded_row),
+            rows_per_image: Some(slot.size.1),
+        },
+        extent,
+    );
     Ok(())
 }

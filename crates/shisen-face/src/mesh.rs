@@ -584,7 +584,7 @@ fn medium_level(
     let coarse = |b0: usize, j0: usize| {
         b0 % 2 == 1
             && b0 + 1 < rows - 1
-            && (0..3).all(|r| (0..3).all(|c| !kept(idx(b0 + r, j0 + c))))
+            && (0..3).all(|r| (0..3).all(|c| !kept(idx(b0 + r, (j0 + c) % cols))))
     };
     // The poles' fans as they are.
     let mut out: Vec<[u32; 3]> = triangles[..2 * cols].to_vec();
