@@ -4,6 +4,7 @@
 
 pub mod check;
 pub mod delay;
+pub mod load_error;
 pub mod locate;
 pub mod math;
 pub mod ron;

@@ -1,39 +1,15 @@
-//! Reading RON files: one error type that names `file:line:col: field.path`,
-//! one parser that produces it, and one way to read a file's text.
+//! Reading RON files: one parser that produces the error naming
+//! `file:line:col: field.path` ([`LoadError`], defined in
+//! [`super::load_error`] and re-exported here), and one way to read a
+//! file's text.
 
 use std::path::Path;
 
 use schemars::JsonSchema;
 use serde::Serialize;
 use serde::de::DeserializeOwned;
-use thiserror::Error;
 
-/// A scene or gains file that could not be loaded.
-#[derive(Debug, Error)]
-pub enum LoadError {
-    /// The file could not be read.
-    #[error("{file}: {reason}")]
-    Io {
-        /// The file.
-        file: String,
-        /// The OS error.
-        reason: std::io::Error,
-    },
-    /// Syntax error, unknown field or invalid value.
-    #[error("{file}:{line}:{col}: {field}: {message}")]
-    Invalid {
-        /// The file.
-        file: String,
-        /// 1-based line.
-        line: usize,
-        /// 1-based column.
-        col: usize,
-        /// Dotted path of the field (`timeline[2].do.Punch.speed`), or `-` for syntax errors.
-        field: String,
-        /// What is wrong.
-        message: String,
-    },
-}
+pub use super::load_error::LoadError;
 
 /// Parse RON text into `T`, reporting the file, line, column and field path,
 /// and check every value against the range its type documents
@@ -173,26 +149,3 @@ pub fn read_text_up_to(path: &Path, max: u64) -> Result<String, LoadError> {
 /// Largest input text file read (scenes, gains, studies, databases,
 /// landmarks, bindings, scripts): 16 MiB, far beyond any real one.
 pub const MAX_INPUT_BYTES: u64 = 16 << 20;
-
-impl LoadError {
-    /// An unreadable file that another file names: reported at the naming
-    /// file's `field` (its line and column), with the OS error once.
-    pub fn named_by(self, file: &Path, text: &str, field: &str) -> LoadError {
-        match self {
-            LoadError::Io {
-                file: missing,
-                reason,
-            } => {
-                let (line, col) = super::locate::locate(text, field);
-                LoadError::Invalid {
-                    file: file.display().to_string(),
-                    line,
-                    col,
-                    field: field.to_string(),
-                    message: format!("cannot read {missing}: {reason}"),
-                }
-            }
-            other => other,
-        }
-    }
-}

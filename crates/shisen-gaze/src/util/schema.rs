@@ -17,8 +17,8 @@ use schemars::JsonSchema;
 use serde::Serialize;
 use serde_json::Value;
 
+use super::load_error::LoadError;
 use super::locate::{Locations, dotted, segments};
-use super::ron::LoadError;
 
 /// The JSON Schema (draft 2020-12) of `T`: doc comments as descriptions,
 /// ranges as `minimum`/`maximum`, defaults, `additionalProperties: false`
