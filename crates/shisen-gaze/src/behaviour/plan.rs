@@ -1,0 +1,334 @@
+//! The plan under way (idle, guard, evade, attack) and what each of its
+//! arms does in a tick, as [`Behaviour`]'s methods: the evasion weighed
+//! when a punch starts, the guard raised against an aimed glove, the
+//! attack decided, looked at, thrown.
+
+use glam::DVec3;
+use rand::{Rng, RngExt};
+use rand_distr::{Distribution, Normal};
+
+use super::reach::Reach;
+use super::threat::{aimed_glove, glove_onset};
+use super::{Behaviour, BehaviourParams, Evasion, OpponentView, TopDown, choose_evasion};
+use crate::personality::Personality;
+use crate::target::{BodyId, Spot};
+use crate::vision::Seen;
+
+/// The action under way, with what it needs to go on.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) enum Plan {
+    Idle,
+    Guard {
+        threat: BodyId,
+        hand: usize,
+        point: DVec3,
+        until: f64,
+    },
+    Evade {
+        threat: BodyId,
+        kind: Evasion,
+        until: f64,
+    },
+    Attack {
+        hand: usize,
+        target: TopDown,
+        /// Decision time; the punch waits for the eyes to land.
+        decided: f64,
+        /// When the eyes landed on the target.
+        looked: Option<f64>,
+        thrown: bool,
+    },
+}
+
+/// The gaze on the incoming glove `threat` (guard and evasion).
+fn on_threat(threat: BodyId, view: &OpponentView, pers: &Personality) -> TopDown {
+    TopDown {
+        name: view.names[threat.index()].clone(),
+        body: Some(threat),
+        spot: Spot::Centre,
+        offset: DVec3::ZERO,
+        amount: pers.a_guard,
+    }
+}
+
+impl Behaviour {
+    /// A punch seen starting at the head may be evaded: decided once per
+    /// punch, on its first sight, by the personality's share.
+    pub(super) fn consider_evasion(
+        &mut self,
+        p: &BehaviourParams,
+        pers: &Personality,
+        view: &OpponentView,
+        opponent_head: Option<&Seen>,
+        t: f64,
+        rng: &mut impl Rng,
+    ) {
+        let onset = glove_onset(p, view);
+        if let Some(g) = onset.filter(|g| self.considered != Some(g.body)) {
+            self.considered = Some(g.body);
+            let evading = matches!(self.plan, Plan::Evade { .. });
+            let head = view.vh_points[0];
+            let opp = opponent_head.map(|h| h.position);
+            if let Some((kind, right)) =
+                choose_evasion(pers, g, head, opp, rng).filter(|_| !evading)
+            {
+                self.body.evade(kind, right, t, p);
+                self.evasions += 1;
+                self.plan = Plan::Evade {
+                    threat: g.body,
+                    kind,
+                    until: t + p.evade_reaction + p.evade_time + p.evade_hold,
+                };
+            }
+        }
+        if onset.is_none() {
+            self.considered = None;
+        }
+    }
+
+    /// A threat seen now pre-empts everything but an evasion of it: the
+    /// glove on its side goes to meet it.
+    pub(super) fn meet_threat(&mut self, p: &BehaviourParams, view: &OpponentView, t: f64) {
+        let Some((threat, point, ttc)) = aimed_glove(p, view) else {
+            return;
+        };
+        // The VH's glove on the side the punch comes from (the opponent's
+        // left glove arrives on the VH's right).
+        let hand = if threat == view.parts[1] { 1 } else { 0 };
+        let met = match self.plan {
+            Plan::Guard { threat: th, .. } | Plan::Evade { threat: th, .. } => th == threat,
+            _ => false,
+        };
+        if !met || matches!(self.plan, Plan::Guard { .. }) {
+            if !met {
+                let from = self.glove(hand, t);
+                // The glove moves once the reaction time is over (the
+                // reach holds its start point until t0).
+                self.reaches[hand] = Some(Reach {
+                    from,
+                    to: point,
+                    t0: t + p.guard_reaction,
+                    dur: (0.3 * ttc).max(0.05),
+                    back: false,
+                });
+                if let Plan::Evade { .. } = self.plan {
+                    self.body.recover(t);
+                }
+            }
+            self.plan = Plan::Guard {
+                threat,
+                hand,
+                point,
+                until: t + p.guard_hold,
+            };
+        }
+    }
+
+    /// An evasion of `threat` of `kind` under way until `until`: the gaze
+    /// stays on the threat; once it is over, idle, or (a strong boxer) a
+    /// counter out of a slip. The action's request; `None` once idle.
+    pub(super) fn evading(
+        &mut self,
+        (threat, kind, until): (BodyId, Evasion, f64),
+        p: &BehaviourParams,
+        pers: &Personality,
+        view: &OpponentView,
+        t: f64,
+        rng: &mut impl Rng,
+    ) -> Option<TopDown> {
+        if t >= until {
+            self.body.recover(t);
+            self.plan = Plan::Idle;
+            // A strong boxer counters out of a slip, with the hand on the
+            // side it slipped to.
+            if p.attacks && kind == Evasion::Slip && rng.random::<f64>() < pers.counter {
+                let right = self.body.posture(t).waist.z > 0.0;
+                return Some(self.start_attack((usize::from(right), false), p, pers, view, t, rng));
+            }
+            None
+        } else {
+            Some(on_threat(threat, view, pers))
+        }
+    }
+
+    /// A guard against `threat` with glove `hand` held until `until`: the
+    /// gaze on the incoming glove (gaze.md 5), then the glove back to its
+    /// stance. The action's request; `None` once idle.
+    pub(super) fn guarding(
+        &mut self,
+        (threat, hand, until): (BodyId, usize, f64),
+        pers: &Personality,
+        view: &OpponentView,
+        t: f64,
+    ) -> Option<TopDown> {
+        if t >= until {
+            let from = self.glove(hand, t);
+            self.reaches[hand] = Some(Reach {
+                from,
+                to: self.guard(hand),
+                t0: t,
+                dur: 0.3,
+                back: false,
+            });
+            self.plan = Plan::Idle;
+            None
+        } else {
+            Some(on_threat(threat, view, pers))
+        }
+    }
+
+    /// An attack with glove `hand` at `target`, decided at `decided`: the
+    /// eyes go to the target, the punch follows, and the attack ends when
+    /// the glove is back. The action's request (the target); `None` once
+    /// idle.
+    pub(super) fn attacking(
+        &mut self,
+        (hand, target, decided, mut looked, thrown): (usize, TopDown, f64, Option<f64>, bool),
+        p: &BehaviourParams,
+        view: &OpponentView,
+        t: f64,
+    ) -> Option<TopDown> {
+        if looked.is_none()
+            && view
+                .eyes_on
+                .is_some_and(|on| target.aims_at(on.body, on.spot))
+        {
+            looked = Some(t);
+        }
+        // "Looks at the target at once, and after 200 ms throws the
+        // punch" (boxing.md): timed from when the eyes land, with a
+        // deadline in case they never do (a distraction won).
+        let punch_at = looked.map_or(decided + p.punch_delay + 0.3, |l| l + p.punch_delay);
+        if let Plan::Attack { looked: l, .. } = &mut self.plan {
+            *l = looked;
+        }
+        if !thrown && t >= punch_at {
+            match self.punch_reach(hand, &target, view, t, p) {
+                Some(r) => {
+                    self.lunge = self.lunge_for(hand, r.to, t, p);
+                    self.body.punch(hand, t, p.punch_time);
+                    self.reaches[hand] = Some(r);
+                    self.punches_thrown += 1;
+                    self.plan = Plan::Attack {
+                        hand,
+                        target: target.clone(),
+                        decided,
+                        looked,
+                        thrown: true,
+                    };
+                }
+                // The target went out of view: call the attack off.
+                None => self.plan = Plan::Idle,
+            }
+        } else if thrown && self.reaches[hand].is_none() {
+            self.body.recover(t);
+            self.plan = Plan::Idle;
+        }
+        (self.plan != Plan::Idle).then_some(target)
+    }
+
+    /// Idle: maybe decide to attack (a Poisson decision while both gloves
+    /// are free). The attack's request if one starts.
+    pub(super) fn idle(
+        &mut self,
+        p: &BehaviourParams,
+        pers: &Personality,
+        view: &OpponentView,
+        t: f64,
+        dt: f64,
+        rng: &mut impl Rng,
+    ) -> Option<TopDown> {
+        let free = self.reaches.iter().all(Option::is_none);
+        if p.attacks
+            && free
+            && rng.random::<f64>() < crate::util::math::poisson_step(p.attack_rate, dt)
+        {
+            let hand = usize::from(rng.random::<f64>() >= p.jab_share);
+            let to_body = rng.random::<f64>() < p.body_shot_share;
+            return Some(self.start_attack((hand, to_body), p, pers, view, t, rng));
+        }
+        None
+    }
+
+    /// Decide to punch with glove `hand` at the opponent's head or body
+    /// (`to_body`), with the aim's random spread; the eyes go to the target
+    /// first. The attack's request (the target).
+    fn start_attack(
+        &mut self,
+        (hand, to_body): (usize, bool),
+        p: &BehaviourParams,
+        pers: &Personality,
+        view: &OpponentView,
+        t: f64,
+        rng: &mut impl Rng,
+    ) -> TopDown {
+        let n = Normal::new(0.0, p.target_spread.max(1e-12)).expect("valid sd");
+        let offset = DVec3::new(n.sample(rng), n.sample(rng), 0.0);
+        let target = if to_body {
+            TopDown {
+                name: "opponent_body".into(),
+                body: Some(view.parts[0]),
+                spot: Spot::Trunk,
+                offset: DVec3::new(0.0, -0.35, 0.05) + offset,
+                amount: pers.a_attack,
+            }
+        } else {
+            TopDown {
+                name: "head".into(),
+                body: Some(view.parts[0]),
+                spot: Spot::Centre,
+                offset,
+                amount: pers.a_attack,
+            }
+        };
+        self.plan = Plan::Attack {
+            hand,
+            target: target.clone(),
+            decided: t,
+            looked: None,
+            thrown: false,
+        };
+        target
+    }
+
+    fn punch_reach(
+        &self,
+        hand: usize,
+        target: &TopDown,
+        view: &OpponentView,
+        t: f64,
+        p: &BehaviourParams,
+    ) -> Option<Reach> {
+        let base = view
+            .seen
+            .iter()
+            .find(|s| Some(s.body) == target.body)
+            .map(|s| s.position)?;
+        Some(Reach {
+            from: self.glove(hand, t),
+            to: base + target.offset,
+            t0: t,
+            dur: p.punch_time,
+            back: true,
+        })
+    }
+
+    /// The lunge a punch at `to` with glove `hand` needs: the part of the
+    /// shoulder-to-target distance beyond the straight arm (less 5 %),
+    /// horizontally toward the target, at most `max_lunge`.
+    fn lunge_for(&self, hand: usize, to: DVec3, t: f64, p: &BehaviourParams) -> Option<Reach> {
+        use crate::anatomy::arm;
+        // Where the shoulder is now: the body may have stepped and turned.
+        let shoulder = self.body.on_trunk(DVec3::from_array(arm::shoulder(hand)));
+        let reach = 0.95 * (arm::UPPER + arm::FOREARM);
+        let len = ((to - shoulder).length() - reach).clamp(0.0, p.max_lunge);
+        let dir = DVec3::new(to.x - shoulder.x, 0.0, to.z - shoulder.z).normalize_or_zero();
+        (len > 0.0).then(|| Reach {
+            from: DVec3::ZERO,
+            to: dir * len,
+            t0: t,
+            dur: p.punch_time,
+            back: true,
+        })
+    }
+}
