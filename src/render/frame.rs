@@ -171,11 +171,7 @@ impl Frame {
         // shading the floor behind the bodies (early depth test).
         let mut draws = Vec::new();
         let looks = Looks::of(&w.plan);
-        let legs = sim
-            .params()
-            .body
-            .human
-            .then(|| sim.lower.legs(&sim.params().body));
+        let legs = sim.params().body.human.then(|| sim.legs());
         let body = posed(&looks.vh, &vh_pose(|s| w.pose(s), &w.plan, legs.as_ref()));
         let (you_head, you_gloves) = (
             w.position(w.part(OpponentPart::Head)),

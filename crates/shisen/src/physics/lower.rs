@@ -25,6 +25,7 @@
 //!   of reach lifts the heel about the toes (as a rear heel in a jab)    (W3)
 //! ```
 
+use crate::physics::balance::params::BalanceParams;
 use glam::{DQuat, DVec3};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -126,6 +127,28 @@ pub struct BodyParams {
     /// march step).
     #[schemars(range(min = 0.0, max = 0.3))]
     pub step_lift: f64,
+    /// How the pelvis is carried: `Driven` (moved along the planned
+    /// paths, the legs placed under it; the default) or `Balanced`
+    /// (experimental: pelvis and legs physical, the root free, kept up by
+    /// the balance controller; docs/model/balance.md).
+    pub pelvis: Pelvis,
+    /// The balance controller's parameters (used when `pelvis` is
+    /// `Balanced`).
+    pub balance: BalanceParams,
+}
+
+/// How the VH's pelvis is carried.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+pub enum Pelvis {
+    /// Moved kinematically along the footwork's planned paths; blows move
+    /// the trunk's joints but not the body (W1-W3).
+    #[default]
+    Driven,
+    /// A free, physical root: pelvis, thighs, shanks and feet are rigid
+    /// bodies on the canvas, kept up by their own control (B1-B5); blows
+    /// push the body. Experimental: the balance does not yet keep it up
+    /// (docs/model/balance.md).
+    Balanced,
 }
 
 /// The schema of [`BodyParams::lead_foot`]: `[x, z]`, each with its own
@@ -154,6 +177,8 @@ impl Default for BodyParams {
             step_trigger: 0.08,
             step_time: 0.25,
             step_lift: 0.04,
+            pelvis: Pelvis::Driven,
+            balance: BalanceParams::default(),
         }
     }
 }
@@ -370,6 +395,30 @@ impl LowerBody {
         self.pelvis
     }
 
+    /// Put planted foot `k` where the body's foot is (`at`, on the
+    /// canvas): the plan follows a foot that a push slid or a recovery
+    /// step placed. A swinging foot is left to its swing.
+    pub fn replant(&mut self, k: usize, at: DVec3) {
+        if self.feet[k].swing.is_none() {
+            self.feet[k].at = at.with_y(0.0);
+        }
+    }
+
+    /// Standing at rest in the stance with the pelvis's ground point at
+    /// `pelvis`, turned to `facing` (a body that got up where it fell).
+    pub fn standing_at(p: &BodyParams, pelvis: DVec3, facing: f64) -> Self {
+        let pelvis = pelvis.with_y(0.0);
+        LowerBody {
+            pelvis,
+            facing,
+            feet: [0, 1].map(|k| Foot {
+                at: pelvis + place(p, k, facing),
+                swing: None,
+            }),
+            ..LowerBody::new(p)
+        }
+    }
+
     /// Whether foot `k` (0 lead/left) is planted.
     pub fn planted(&self, k: usize) -> bool {
         self.feet[k].swing.is_none()
@@ -471,7 +520,7 @@ fn foot_yaw(p: &BodyParams, k: usize) -> f64 {
 
 /// W3: the leg's joints for a hip and a foot (midpoint on the ground,
 /// heading `yaw`); `sx` +1 for the left leg.
-fn leg_ik(hip: DVec3, foot: DVec3, yaw: f64, sx: f64) -> Leg {
+pub(crate) fn leg_ik(hip: DVec3, foot: DVec3, yaw: f64, sx: f64) -> Leg {
     use anthro::{ANKLE_FROM_HEEL, ANKLE_HEIGHT, FOOT_LENGTH, SHANK, THIGH};
     let fwd = DVec3::new(yaw.sin(), 0.0, yaw.cos());
     let heel0 = foot - fwd * FOOT_LENGTH / 2.0;

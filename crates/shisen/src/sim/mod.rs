@@ -9,6 +9,7 @@
 //! evolves.
 
 pub mod blows;
+mod body;
 pub mod bout;
 pub mod effort;
 pub mod expect;
@@ -22,9 +23,10 @@ use glam::{DVec2, DVec3, Quat, Vec3};
 use rand::SeedableRng;
 use rand::rngs::StdRng;
 
+use crate::physics::balance::Balance;
 use crate::physics::body::{OpponentPart, Seg, Shape, arm_ik};
 use crate::physics::control::JointTarget;
-use crate::physics::lower::{BodyCommand, Carried, LowerBody};
+use crate::physics::lower::{Carried, LowerBody};
 use crate::physics::neck::{self, NeckState};
 use crate::physics::world::{PropSpec, World};
 use blows::{Blow, BlowKind, Blows, Fighter, Tally};
@@ -118,8 +120,12 @@ pub struct Sim {
     blows: Blows,
     /// The neck muscles' activation (tone, bracing, reflex).
     pub neck: NeckState,
-    /// Legs, feet and waist.
+    /// Legs, feet and waist as planned (with a physical pelvis, the
+    /// posture the body's joints track).
     pub lower: LowerBody,
+    /// The physical body's balance: its state, knockdowns and get-ups
+    /// (idle while the pelvis is driven).
+    pub balance: Balance,
     /// Your avatar's legs, feet and waist, carried under its head (in its
     /// own frame: see [`Sim::avatar_frame`]).
     pub avatar: Carried,
@@ -147,7 +153,7 @@ impl Sim {
     /// Start a simulation of `model` with a timeline (sorted here; events
     /// at equal times keep their order).
     pub fn new(model: Model, timeline: &[Event]) -> Self {
-        let mut world = World::new(model.plan.clone(), model.dt);
+        let mut world = World::with_body(model.plan.clone(), model.dt, Some(&model.params.body));
         let blows = Blows::new(&world);
         let mut scripted: Vec<(BodyId, DVec3)> = world
             .parts()
@@ -204,6 +210,7 @@ impl Sim {
             blows,
             neck: NeckState::default(),
             lower,
+            balance: Balance::default(),
             avatar,
             head_touch: Vec::new(),
             effort: Effort::default(),
@@ -277,6 +284,7 @@ impl Sim {
         }
         self.neck = NeckState::default();
         self.lower = LowerBody::new(&self.model.params.body);
+        self.balance = Balance::default();
         self.counted = (0, 0);
         self.resets += 1;
     }
@@ -300,7 +308,8 @@ impl Sim {
         let choice = self.attend(&top_down, t);
         let gaze = self.move_gaze(choice, t);
         self.animate_face(&gaze);
-        self.plan_arms(t);
+        let trunk = self.plan_body(t);
+        self.plan_arms(t, trunk);
         self.carry_avatar(t);
         let reset = self.actuate_and_integrate();
         let blows = self.resolve_contacts();
@@ -393,6 +402,9 @@ impl Sim {
         self.timeline
             .run(t, &self.world, &self.model.face, &mut self.face_state);
         self.timeline.drive(&mut self.world, t, self.model.dt);
+        for (part, impulse) in std::mem::take(&mut self.timeline.pushes) {
+            self.world.push(part, impulse.as_vec3());
+        }
     }
 
     /// Sense: the bodies in view through the open eyes, with saliency (M1);
@@ -568,56 +580,6 @@ impl Sim {
             })
     }
 
-    /// Body: the lower body steps and the waist turns toward the planned
-    /// posture (the lunge of a punch shifts the hips, so the feet step in
-    /// and out with it); the trunk is put where they carry it.
-    fn plan_body(&mut self, t: f64) -> (DVec3, glam::DQuat) {
-        let dt = self.model.dt;
-        let lunge = self.behaviour.torso_offset(t + dt);
-        let p = &self.model.params.body;
-        if !p.human {
-            self.world.set_root_offset(lunge.as_vec3());
-            return (lunge, glam::DQuat::IDENTITY);
-        }
-        let at = |k: f64| self.behaviour.posture(t + dt + k * dt);
-        let (before, now, after) = (at(-1.0), at(0.0), at(1.0));
-        let lunge_v = (self.behaviour.torso_offset(t + 2.0 * dt) - lunge) / dt;
-        let cmd = BodyCommand {
-            pelvis: now.pelvis + DVec3::new(lunge.x, 0.0, lunge.z),
-            pelvis_velocity: (after.pelvis - before.pelvis) / (2.0 * dt) + lunge_v,
-            waist: [
-                now.waist,
-                (after.waist - before.waist) / (2.0 * dt),
-                (after.waist - 2.0 * now.waist + before.waist) / (dt * dt),
-            ],
-            crouch: now.crouch,
-            facing: now.facing,
-        };
-        self.lower.step(p, &cmd, t + dt, dt);
-        let offset = self.lower.waist_offset() + DVec3::Y * lunge.y;
-        let rotation = self.lower.trunk_rotation();
-        self.world
-            .set_root_pose(offset.as_vec3(), rotation.as_quat());
-        self.behaviour.set_trunk(offset, rotation);
-        (offset, rotation)
-    }
-
-    /// Your avatar's body: its legs step and its waist bends under its
-    /// head, wherever the input or the script puts the head.
-    fn carry_avatar(&mut self, t: f64) {
-        let to_local = self.avatar_frame().inverse();
-        let w = &self.world;
-        let head = w.position(w.part(OpponentPart::Head)).as_dvec3();
-        let vh = w.position(Seg::Head).as_dvec3();
-        let (head, vh) = (
-            to_local.transform_point3(head),
-            to_local.transform_point3(vh),
-        );
-        let p = self.model.params.body.standing();
-        self.avatar
-            .step(&p, head, vh, t + self.model.dt, self.model.dt);
-    }
-
     /// Your avatar's frame: its own frame (facing +Z, as the VH's) turned
     /// to face the VH and put on the ground under its rest head.
     pub fn avatar_frame(&self) -> glam::DAffine3 {
@@ -629,11 +591,10 @@ impl Sim {
     /// Arms: inverse kinematics of the planned glove positions, in the
     /// trunk's frame; the velocity reference comes from differencing the
     /// IK solution.
-    fn plan_arms(&mut self, t: f64) {
+    fn plan_arms(&mut self, t: f64, (offset, rotation): (DVec3, glam::DQuat)) {
         let dt = self.model.dt;
         // The trunk's movement carries the shoulders: the arms' inverse
         // kinematics works from where the trunk will be.
-        let (offset, rotation) = self.plan_body(t);
         let waist = DVec3::from_array(shisen_gaze::anatomy::trunk::WAIST);
         let inv = rotation.inverse();
         let gloves = self
@@ -804,11 +765,11 @@ impl Sim {
             head_world: DVec2::new(hy, hp),
             head_speed: f64::from(w.rb(Seg::Head).angvel().length()),
             head: w.position(Seg::Head).as_dvec3(),
-            pelvis: self.lower.pelvis(),
+            pelvis: self.pelvis(),
             waist: self.lower.waist(&self.model.params.body),
             heading: self.lower.facing(),
             range: {
-                let d = w.position(w.part(OpponentPart::Head)).as_dvec3() - self.lower.pelvis();
+                let d = w.position(w.part(OpponentPart::Head)).as_dvec3() - self.pelvis();
                 d.x.hypot(d.z)
             },
             top_saliency: top,
@@ -823,6 +784,8 @@ impl Sim {
             bell: self.bell,
             fatigue: self.effort.fatigue(&self.model.params.effort),
             staggered: self.effort.staggered(self.time()),
+            stance: self.balance.stance,
+            com: self.balance.last.com,
         }
     }
 }

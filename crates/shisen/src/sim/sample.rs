@@ -5,6 +5,7 @@ use glam::{DVec2, DVec3};
 
 use super::blows::Blow;
 use super::bout::{Bell, Phase};
+use crate::physics::balance::Stance;
 use shisen_face::tables::Emotion;
 use shisen_gaze::attention::Source;
 use shisen_gaze::behaviour::ActionKind;
@@ -80,4 +81,9 @@ pub struct Sample {
     pub fatigue: f64,
     /// Whether a blow has it staggered.
     pub staggered: bool,
+    /// Up, falling, down or rising (B5; always up with a driven pelvis).
+    pub stance: Stance,
+    /// The whole body's centre of mass, world, m (with a driven pelvis:
+    /// zero, not measured).
+    pub com: DVec3,
 }

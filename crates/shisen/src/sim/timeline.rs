@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use super::track::Track;
 use crate::physics::body::{OpponentPart, Seg};
-use crate::physics::world::World;
+use crate::physics::world::{PushPart, World};
 use shisen_face::{Face, FaceState};
 use shisen_gaze::oculomotor::{AxisCommand, GazeShiftLaw};
 use shisen_gaze::util::math::{min_jerk, min_jerk_d, min_jerk_dd};
@@ -108,6 +108,21 @@ pub enum Action {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         #[schemars(range(min = 0.0, max = 0.5))]
         through: Option<f64>,
+    },
+    /// Push the VH: an impulse on one of its parts, as a shove or a blow
+    /// of known size would give (push-recovery tests). It moves the body
+    /// only where the body is physical: the trunk and pelvis need
+    /// `vh.body.pelvis: Balanced`.
+    Push {
+        /// Where the impulse acts: `Trunk` (at its centre of mass),
+        /// `Pelvis` or `Head`.
+        part: PushPart,
+        /// The impulse `(x, y, z)`, world, N s. Each within +-300 N s: a
+        /// 75 kg body at 4 m/s, past any shove or punch (a straight
+        /// punch's momentum is at most about 26 N s: Walilko, Viano & Bir
+        /// 2005, Br. J. Sports Med. 39:710).
+        #[schemars(with = "[f64; 3]", inner(range(min = -300.0, max = 300.0)))]
+        impulse: DVec3,
     },
     /// Wave a part (a glove, the head or a kinematic prop) sinusoidally
     /// about its current position, along each axis by its amplitude, for
@@ -372,6 +387,8 @@ pub struct Timeline {
     pub(super) shake: Option<Shake>,
     /// The opponent's punches started in the last `run`.
     pub(super) thrown: Vec<Hand>,
+    /// The pushes due in the last `run`.
+    pub(super) pushes: Vec<(PushPart, DVec3)>,
 }
 
 impl Timeline {
@@ -391,6 +408,7 @@ impl Timeline {
             occluded: [false; 2],
             shake: None,
             thrown: Vec::new(),
+            pushes: Vec::new(),
         }
     }
 
@@ -447,6 +465,7 @@ impl Timeline {
     /// Run every event due by `t`, in time order.
     pub fn run(&mut self, t: f64, world: &World, face: &Face, face_state: &mut FaceState) {
         self.thrown.clear();
+        self.pushes.clear();
         while self.next < self.events.len() && self.events[self.next].at <= t + 1e-12 {
             let ev = self.events[self.next].clone();
             self.next += 1;
@@ -457,6 +476,7 @@ impl Timeline {
                         tr.reach(t, to, duration);
                     }
                 }
+                Action::Push { part, impulse } => self.pushes.push((part, impulse)),
                 Action::Wave {
                     part,
                     amplitude,

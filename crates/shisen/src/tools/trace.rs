@@ -135,6 +135,12 @@ pub const COLUMNS: &[(&str, Cell)] = &[
     ),
     ("fatigue", Cell::Num(|s| s.fatigue, 3)),
     ("staggered", yes(|s| flag(s.staggered))),
+    (
+        "stance",
+        Cell::Text(|s, o| {
+            let _ = write!(o, "{}", s.stance.name());
+        }),
+    ),
     ("salient_1", Cell::Text(|s, o| top(o, s, 0))),
     ("salient_2", Cell::Text(|s, o| top(o, s, 1))),
     ("salient_3", Cell::Text(|s, o| top(o, s, 2))),

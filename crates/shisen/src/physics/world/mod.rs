@@ -9,13 +9,20 @@
 
 use glam::{DQuat, DVec3, Mat3, Quat, Vec3};
 use rapier3d::prelude::*;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
 
-use crate::physics::body::{
-    BodyPlan, Group, HARD_STOP_MARGIN_DEG, JointKind, OpponentPart, Seg, Segment, Shape,
-};
+use crate::physics::body::{BodyPlan, Group, JointKind, OpponentPart, Seg, Shape};
 use crate::physics::control::{Gains, JointState, JointTarget, pd_torque};
+mod build;
+
+pub use build::HEAD_RESTITUTION;
+
+use crate::physics::legs::{Legs, Part, share};
+use crate::physics::lower::{BodyParams, Pelvis};
 use crate::physics::neck::{NeckParams, NeckState, neck_torque};
-use crate::physics::opponent::{DriveState, OPPONENT_MASS, drive_impulse};
+use crate::physics::opponent::{DriveState, drive_impulse};
+use build::{add_opponent, add_segments, collider_for, empty_world, join_segments, subtrees};
 use shisen_gaze::util::math::JointAngles;
 use shisen_gaze::vision::{BodyId, Motion, Scenery};
 
@@ -47,6 +54,17 @@ pub struct BodyInfo {
     /// its own; a welded segment (a glove) is a collider on its parent's
     /// body, here.
     pub offset: Vec3,
+}
+
+/// A part of the VH that a push (the scene's `Push` event) acts on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+pub enum PushPart {
+    /// The trunk, at its centre of mass.
+    Trunk,
+    /// The pelvis.
+    Pelvis,
+    /// The head.
+    Head,
 }
 
 /// A scene prop to add to the world.
@@ -113,221 +131,9 @@ pub struct World {
     /// The root's offsets from rest: two steps ago, last step, next step
     /// (its planned acceleration, for the joints' feed-forward).
     root_path: [Vec3; 3],
-}
-
-fn collider_for(shape: Shape, axis_to: Vec3, at: Vec3) -> ColliderBuilder {
-    let rot = Quat::from_rotation_arc(Vec3::Y, axis_to.normalize());
-    let b = match shape {
-        Shape::Ball { radius } => ColliderBuilder::ball(radius),
-        Shape::Capsule {
-            half_height,
-            radius,
-        } => ColliderBuilder::capsule_y(half_height, radius),
-        Shape::Cuboid { half } => ColliderBuilder::cuboid(half.x, half.y, half.z),
-    };
-    b.position(Pose::from_parts(at, rot))
-}
-
-/// A head's surface: whatever strikes it (a glove, a padded impactor)
-/// rebounds with [`HEAD_RESTITUTION`] of its closing speed.
-fn head_surface(cb: ColliderBuilder) -> ColliderBuilder {
-    cb.restitution(HEAD_RESTITUTION)
-        .restitution_combine_rule(CoefficientCombineRule::Max)
-}
-
-/// Restitution of a blow to the head: 0.5. Our calibration, not a
-/// measured figure: with it a padded 3.7 kg impactor at 2 m/s turns the
-/// head at Reynier et al. 2020's 6.5-7.3 rad/s (Ann. Biomed. Eng., doi
-/// 10.1007/s10439-020-02609-7); with none (rapier's default) at 4.4 rad/s,
-/// too little for the momentum it carries.
-pub const HEAD_RESTITUTION: f32 = 0.5;
-
-/// Build step 1: an empty rapier world with the solver's settings.
-fn empty_world(dt: f64) -> PhysicsWorld {
-    let mut phys = PhysicsWorld::new();
-    phys.integration_parameters.dt = dt as f32;
-    phys.integration_parameters.num_solver_iterations = SOLVER_SUBSTEPS;
-    phys.integration_parameters.num_internal_pgs_iterations = SOLVER_ITERATIONS;
-    phys
-}
-
-/// Build step 2: one body and collider per VH segment, in plan order (a
-/// welded segment is a collider on its parent's body).
-fn add_segments(phys: &mut PhysicsWorld, plan: &BodyPlan, bodies: &mut Vec<BodyInfo>) {
-    let vh_groups = InteractionGroups::new(VH_GROUP, Group32::ALL ^ VH_GROUP, Default::default());
-    for (i, s) in plan.segments.iter().enumerate() {
-        let seg = Seg::from_index(i).expect("a plan's segments are Seg::ALL, in order");
-        // A welded segment is not a body of its own but a collider on
-        // its parent's (as MuJoCo merges a body without joints): no
-        // joint to solve, nothing to drift apart.
-        let welded = match (s.joint, s.parent) {
-            (JointKind::Weld, Some(p)) => Some(p),
-            _ => None,
-        };
-        let (h, offset) = match welded {
-            Some(p) => {
-                let carrier = &bodies[p.index()];
-                let offset = carrier.offset + s.centre - plan.segments[p.index()].centre;
-                (carrier.handle, offset)
-            }
-            None => {
-                // The root stands on a stand that slides (kinematically)
-                // when the VH steps into a punch.
-                let rb = if s.parent.is_none() {
-                    RigidBodyBuilder::kinematic_position_based()
-                } else {
-                    RigidBodyBuilder::dynamic()
-                }
-                .translation(s.centre)
-                .can_sleep(false)
-                .user_data(i as u128);
-                (phys.insert_body(rb), Vec3::ZERO)
-            }
-        };
-        let mut cb = collider_for(s.shape, s.axis_to, offset).collision_groups(vh_groups);
-        if s.mass > 0.0 {
-            cb = cb.mass(s.mass);
-        }
-        if Seg::EYES.contains(&seg) {
-            // Eyes sit inside the head: they carry mass but touch nothing.
-            cb = cb.collision_groups(InteractionGroups::none());
-        }
-        if seg == Seg::Head {
-            cb = head_surface(cb);
-        }
-        let c = phys.insert_collider(cb.user_data(i as u128), Some(h));
-        bodies.push(BodyInfo {
-            name: s.name.to_string(),
-            handle: h,
-            collider: c,
-            owner: Owner::Vh(seg),
-            kinematic: false,
-            offset,
-        });
-    }
-}
-
-/// Build step 3: the joints between segments (ball, hinge; eyes and neck
-/// with a hard stop beyond the controller's range). Returns each
-/// segment's pivot in its parent's frame.
-fn join_segments(phys: &mut PhysicsWorld, plan: &BodyPlan, bodies: &[BodyInfo]) -> Vec<Vec3> {
-    let mut anchor_parent = vec![Vec3::ZERO; plan.segments.len()];
-    for (i, s) in plan.segments.iter().enumerate() {
-        let Some(p) = s.parent else { continue };
-        let a1 = s.pivot - plan.segments[p.index()].centre;
-        let a2 = s.pivot - s.centre;
-        anchor_parent[i] = a1;
-        let Some(joint) = joint_for(s, a1, a2) else {
-            continue;
-        };
-        phys.insert_impulse_joint(bodies[p.index()].handle, bodies[i].handle, joint);
-    }
-    anchor_parent
-}
-
-/// The rapier joint of a segment with anchors `a1` (parent frame) and
-/// `a2` (own frame); `None` for the root and welded segments.
-fn joint_for(s: &Segment, a1: Vec3, a2: Vec3) -> Option<GenericJoint> {
-    Some(match s.joint {
-        JointKind::Ball => {
-            let mut j = SphericalJointBuilder::new()
-                .local_anchor1(a1)
-                .local_anchor2(a2)
-                .contacts_enabled(false);
-            if matches!(s.group, Some(Group::Eye | Group::Neck))
-                && let Some(l) = s.limits
-            {
-                // rapier's per-axis limit is 2 asin(q.imag[axis]); close to
-                // our angles, so a margin keeps it a pure safety stop.
-                let m = HARD_STOP_MARGIN_DEG * 2.0;
-                let r = |v: [f32; 2]| [(v[0] - m).to_radians(), (v[1] + m).to_radians()];
-                let pitch = r(l.pitch);
-                j = j
-                    .limits(JointAxis::AngY, r(l.yaw))
-                    .limits(JointAxis::AngX, [-pitch[1], -pitch[0]])
-                    .limits(JointAxis::AngZ, r(l.roll));
-            }
-            j.build().into()
-        }
-        JointKind::Hinge { axis } => RevoluteJointBuilder::new(axis)
-            .local_anchor1(a1)
-            .local_anchor2(a2)
-            .contacts_enabled(false)
-            .build()
-            .into(),
-        JointKind::Weld | JointKind::Root => return None,
-    })
-}
-
-/// Build step 4: each segment's subtree (the segments with a body of
-/// their own that it carries, itself included).
-fn subtrees(plan: &BodyPlan) -> Vec<Vec<Seg>> {
-    let mut subtree = vec![Vec::new(); plan.segments.len()];
-    for seg in Seg::ALL.into_iter().take(plan.segments.len()) {
-        if plan.segments[seg.index()].joint == JointKind::Weld {
-            continue;
-        }
-        let mut j = Some(seg);
-        while let Some(k) = j {
-            subtree[k.index()].push(seg);
-            j = plan.segments[k.index()].parent;
-        }
-    }
-    subtree
-}
-
-/// Build step 5: the opponent's head and gloves, after the VH's
-/// segments. Returns their bodies in [`OpponentPart`] order.
-fn add_opponent(
-    phys: &mut PhysicsWorld,
-    plan: &BodyPlan,
-    bodies: &mut Vec<BodyInfo>,
-) -> [BodyId; 3] {
-    let positions = [
-        plan.opponent_head,
-        plan.opponent_gloves[0],
-        plan.opponent_gloves[1],
-    ];
-    let radii = [
-        plan.opponent_head_radius,
-        plan.glove_radius,
-        plan.glove_radius,
-    ];
-    OpponentPart::ALL.map(|part| {
-        let k = part.index();
-        let idx = bodies.len();
-        // Dynamic, driven by a spring-damper toward the scripted or live
-        // target (see `World::drive`): finite mass and strength, so a punch
-        // that lands transfers momentum, and an arm caught between a
-        // glove and the torso is pushed, not crushed.
-        let h = phys.insert_body(
-            RigidBodyBuilder::dynamic()
-                .translation(positions[k])
-                .gravity_scale(0.0)
-                .lock_rotations()
-                .can_sleep(false)
-                .user_data(idx as u128),
-        );
-        let mut cb = ColliderBuilder::ball(radii[k]);
-        if part == OpponentPart::Head {
-            cb = head_surface(cb);
-        }
-        let c = phys.insert_collider(
-            cb.mass(OPPONENT_MASS[k])
-                .collision_groups(InteractionGroups::all())
-                .user_data(idx as u128),
-            Some(h),
-        );
-        bodies.push(BodyInfo {
-            name: part.name().to_string(),
-            handle: h,
-            collider: c,
-            owner: Owner::Opponent(part),
-            kinematic: false,
-            offset: Vec3::ZERO,
-        });
-        BodyId::new(idx)
-    })
+    /// The physical lower body, when the pelvis is free
+    /// ([`Pelvis::Balanced`]): the trunk is then a dynamic body on it.
+    pub legs: Option<Legs>,
 }
 
 impl World {
@@ -335,6 +141,20 @@ impl World {
     /// solver, the VH's segments, their joints, the constant inertias and
     /// subtrees, the opponent's parts.
     pub fn new(plan: BodyPlan, dt: f64) -> Self {
+        Self::with_body(plan, dt, None)
+    }
+
+    /// Build the world at rest as [`World::new`] does, with the lower
+    /// body `body` describes: for a standing VH whose pelvis is
+    /// [`Pelvis::Balanced`], the trunk becomes a dynamic body of its
+    /// share of the mass, carried by a physical pelvis and legs on the
+    /// canvas ([`Legs`]).
+    pub fn with_body(mut plan: BodyPlan, dt: f64, body: Option<&BodyParams>) -> Self {
+        let free = body.is_some_and(|b| b.human && b.pelvis == Pelvis::Balanced);
+        if free {
+            plan.segments[Seg::Torso.index()].mass =
+                share::TRUNK * crate::physics::lower::anthro::MASS as f32;
+        }
         assert_eq!(
             plan.segments.len(),
             Seg::ALL.len(),
@@ -342,8 +162,21 @@ impl World {
         );
         let mut phys = empty_world(dt);
         let mut bodies = Vec::new();
-        add_segments(&mut phys, &plan, &mut bodies);
+        add_segments(&mut phys, &plan, &mut bodies, free);
         let anchor_parent = join_segments(&mut phys, &plan, &bodies);
+        let legs = body.filter(|_| free).map(|b| {
+            let torso = &plan.segments[Seg::Torso.index()];
+            let groups =
+                InteractionGroups::new(VH_GROUP, Group32::ALL ^ VH_GROUP, Default::default());
+            Legs::build(
+                &mut phys,
+                b,
+                bodies[Seg::Torso.index()].handle,
+                torso.centre,
+                groups,
+                Seg::Torso.index() as u128,
+            )
+        });
         let local_inertia = bodies
             .iter()
             .map(|b| {
@@ -366,7 +199,17 @@ impl World {
             local_inertia,
             driven: Vec::new(),
             root_path: [Vec3::ZERO; 3],
+            legs,
         }
+    }
+
+    /// The VH's segments that are bodies of their own (not welded).
+    pub fn vh_bodies(&self) -> impl Iterator<Item = Seg> + '_ {
+        Seg::ALL
+            .into_iter()
+            .zip(&self.plan.segments)
+            .filter(|(_, s)| s.joint != JointKind::Weld)
+            .map(|(seg, _)| seg)
     }
 
     /// Add a prop; returns its body.
@@ -527,7 +370,12 @@ impl World {
     /// the controller as a person's own movement is: its postural
     /// adjustment is feed-forward, not a reflex to the head lagging).
     pub fn gravity_torque(&self, s: Seg, root_accel: Vec3) -> Vec3 {
-        let pivot = self.pivot(s);
+        self.gravity_torque_about(s, self.pivot(s), root_accel)
+    }
+
+    /// [`World::gravity_torque`] about any point (the trunk's, about the
+    /// waist of a physical pelvis).
+    pub fn gravity_torque_about(&self, s: Seg, pivot: Vec3, root_accel: Vec3) -> Vec3 {
         let g = self.phys.gravity - root_accel;
         let mut tau = Vec3::ZERO;
         for &b in &self.subtree[s.index()] {
@@ -586,11 +434,37 @@ impl World {
         }
         for (p, s, imp) in impulses {
             let hs = self.info(s).handle;
-            self.phys.bodies[hs].apply_torque_impulse(imp, true);
+            self.torque_impulse(hs, imp);
             let hp = self.info(p).handle;
             if self.phys.bodies[hp].is_dynamic() {
-                self.phys.bodies[hp].apply_torque_impulse(-imp, true);
+                self.torque_impulse(hp, -imp);
             }
+        }
+    }
+
+    /// Give body `h` a torque impulse over the next step. A link of an
+    /// articulation (the physical lower body and the trunk it carries)
+    /// moves by its joints' coordinates, so it takes the impulse as a
+    /// torque held through the step (cleared after it, [`World::step`]).
+    pub fn torque_impulse(&mut self, h: RigidBodyHandle, imp: Vec3) {
+        let linked = self.phys.multibody_joints.rigid_body_link(h).is_some();
+        let rb = &mut self.phys.bodies[h];
+        if linked {
+            rb.add_torque(imp / self.dt as f32, true);
+        } else {
+            rb.apply_torque_impulse(imp, true);
+        }
+    }
+
+    /// [`World::torque_impulse`] for a linear impulse at the centre of
+    /// mass.
+    pub fn impulse(&mut self, h: RigidBodyHandle, imp: Vec3) {
+        let linked = self.phys.multibody_joints.rigid_body_link(h).is_some();
+        let rb = &mut self.phys.bodies[h];
+        if linked {
+            rb.add_force(imp / self.dt as f32, true);
+        } else {
+            rb.apply_impulse(imp, true);
         }
     }
 
@@ -616,6 +490,19 @@ impl World {
             target: (position, velocity, accel),
         };
         rb.apply_impulse(drive_impulse(&state, dt), true);
+    }
+
+    /// Give the VH's part `part` an impulse (N s, world) at its centre of
+    /// mass; a kinematic part (the trunk of a driven pelvis) is not moved.
+    pub fn push(&mut self, part: PushPart, impulse: Vec3) {
+        let h = match (part, &self.legs) {
+            (PushPart::Pelvis, Some(legs)) => legs.handles[Part::Pelvis.index()],
+            (PushPart::Pelvis | PushPart::Trunk, _) => self.info(Seg::Torso).handle,
+            (PushPart::Head, _) => self.info(Seg::Head).handle,
+        };
+        if self.phys.bodies[h].is_dynamic() {
+            self.impulse(h, impulse);
+        }
     }
 
     /// Where a driven body was last asked to be, if it is driven: a part
@@ -646,6 +533,12 @@ impl World {
     /// Advance the physics by one fixed step.
     pub fn step(&mut self) {
         self.phys.step();
+        if let Some(legs) = &self.legs {
+            for h in legs.handles.iter().chain([&legs.trunk]) {
+                self.phys.bodies[*h].reset_forces(false);
+                self.phys.bodies[*h].reset_torques(false);
+            }
+        }
     }
 
     /// True if every dynamic body's pose and velocity are finite.
@@ -707,6 +600,9 @@ impl World {
             rb.set_angvel(Vec3::ZERO, true);
             rb.reset_forces(true);
             rb.reset_torques(true);
+        }
+        if let Some(legs) = &self.legs {
+            legs.reset(&mut self.phys);
         }
         for (_, j) in self.phys.impulse_joints.iter_mut() {
             j.impulses = Default::default();
@@ -783,86 +679,4 @@ impl Scenery for World {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// However abrupt the scripted path, a driven glove gains at most
-    /// `DRIVE_MAX_ACCEL dt` of speed in a step.
-    #[test]
-    fn a_driven_glove_is_capped() {
-        let mut w = World::new(BodyPlan::default(), 0.001);
-        let g = w.part(OpponentPart::LeftGlove);
-        let p = w.rb(g).translation();
-        w.drive(g, p + Vec3::X * 0.05, Vec3::X * 50.0, Vec3::X * 1e5);
-        w.step();
-        let v = w.rb(g).linvel().length();
-        let cap = crate::physics::opponent::DRIVE_MAX_ACCEL * 0.001;
-        assert!(v > 0.1 && v <= cap * 1.001, "{v}");
-    }
-
-    #[test]
-    fn joint_angles_round_trip() {
-        let a = JointAngles {
-            yaw: 0.4,
-            pitch: -0.3,
-            roll: 0.1,
-        };
-        let b = JointAngles::from_quat(a.to_quat());
-        assert!((a.yaw - b.yaw).abs() < 1e-6);
-        assert!((a.pitch - b.pitch).abs() < 1e-6);
-        assert!((a.roll - b.roll).abs() < 1e-6);
-        // positive pitch turns the forward axis up, positive yaw to the left (+X)
-        let f = a.to_quat() * Vec3::Z;
-        assert!(f.x > 0.0);
-        let up = JointAngles {
-            pitch: 0.3,
-            ..Default::default()
-        }
-        .to_quat()
-            * Vec3::Z;
-        assert!(up.y > 0.0);
-    }
-
-    /// A welded glove is a collider on its forearm's body: it keeps its
-    /// place on the forearm however the arm swings, and its mass is the
-    /// forearm body's.
-    #[test]
-    fn a_welded_glove_rides_its_forearm() {
-        let plan = BodyPlan::default();
-        let (f, g) = (Seg::ForearmL, Seg::GloveL);
-        let reach = (plan.segments[g.index()].centre - plan.segments[f.index()].pivot).length();
-        let mass = plan.segments[f.index()].mass + plan.segments[g.index()].mass;
-        let mut w = World::new(plan, 0.001);
-        assert_eq!(w.info(g).handle, w.info(f).handle);
-        assert!((w.rb(g).mass() - mass).abs() < 1e-4, "{}", w.rb(g).mass());
-        let h = w.info(f).handle;
-        w.phys.bodies[h].set_angvel(Vec3::new(3.0, 1.0, 0.0), true);
-        for _ in 0..50 {
-            w.step();
-        }
-        let elbow = w.pivot(f);
-        let d = (w.position(g) - elbow).length();
-        assert!((d - reach).abs() < 2e-3, "{d} vs {reach}");
-        // The part's velocity is its point's, not the body centre's.
-        let rb = w.rb(g);
-        let lever = w.position(g) - rb.center_of_mass();
-        let expect = rb.linvel() + rb.angvel().cross(lever);
-        assert!((w.velocity(g) - expect).length() < 1e-4);
-        assert!(w.joint_gap() < 2e-3, "{}", w.joint_gap());
-    }
-
-    #[test]
-    fn world_builds_at_rest() {
-        let w = World::new(BodyPlan::default(), 0.001);
-        assert_eq!(w.info(w.part(OpponentPart::LeftGlove)).name, "left_glove");
-        let a = w.joint_angles(Seg::Head);
-        assert!(a.yaw.abs() < 1e-9 && a.pitch.abs() < 1e-9);
-        let i = w.subtree_inertia(Seg::EyeL, w.pivot(Seg::EyeL));
-        let expect = shisen_gaze::anatomy::eye::INERTIA as f32;
-        assert!(
-            (i.x_axis.x - expect).abs() / expect < 1e-3,
-            "{}",
-            i.x_axis.x
-        );
-    }
-}
+mod tests;

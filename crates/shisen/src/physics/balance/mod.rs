@@ -1,0 +1,361 @@
+//! Balance: the controller that keeps the physical body up, and its
+//! states when it cannot (docs/model/balance.md, B2-B5).
+//!
+//! ```text
+//! xi = c + v / w0,  w0 = sqrt(g / h_c)                               (B2)
+//!   the capture point (Hof, Gazendam & Sinke 2005, J. Biomech. 38:1;
+//!   their "extrapolated centre of mass")
+//! small errors: every joint tracks the planned posture by stable PD; the
+//!   stance legs carry the body's weight, shared by the centre of mass's
+//!   place between the feet: tau_j = (p_j - c) x (s_k M g y^)          (B3)
+//!   (the ankle strategy, and the hips' when the trunk is pushed)
+//! large ones: xi outside the feet's polygon by `step_margin` sends the
+//!   planned pelvis to xi; the footwork law (W2) steps there           (B4)
+//! too large: the trunk past `fall_tilt`, or the hips lower than
+//!   `fall_height`: the body falls (muscle tone `down_tone`), lies for a
+//!   time that grows with the damage, and rises (B5)
+//! ```
+//!
+//! The state machine: Standing -> Falling (a knockdown) -> Down (on the
+//! canvas) -> Rising -> Standing (a get-up).
+
+use glam::{DVec3, Quat, Vec3};
+
+use crate::physics::body::Seg;
+use crate::physics::legs::{Joint, Legs, Part};
+use crate::physics::lower::{BodyParams, LowerBody, anthro};
+use crate::physics::world::World;
+
+pub mod params;
+use params::BalanceParams;
+
+/// Where the body is in the balance states.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Stance {
+    /// Up: tracking the planned posture, stepping to recover.
+    #[default]
+    Standing,
+    /// Going down (a knockdown).
+    Falling,
+    /// On the canvas.
+    Down,
+    /// Getting up.
+    Rising,
+}
+
+impl Stance {
+    /// Its name in traces.
+    pub fn name(self) -> &'static str {
+        match self {
+            Stance::Standing => "standing",
+            Stance::Falling => "falling",
+            Stance::Down => "down",
+            Stance::Rising => "rising",
+        }
+    }
+
+    /// Whether the body is up and fighting.
+    pub fn up(self) -> bool {
+        self == Stance::Standing
+    }
+}
+
+/// What the balance measured this tick.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BalanceState {
+    /// The whole body's centre of mass, world.
+    pub com: DVec3,
+    /// Its velocity.
+    pub com_velocity: DVec3,
+    /// The capture point on the ground (B2).
+    pub capture: DVec3,
+    /// How far the capture point is outside the feet's polygon, m
+    /// (negative: inside).
+    pub outside: f64,
+    /// The trunk's tilt from upright, rad.
+    pub tilt: f64,
+    /// The hips' height (the pelvis's centre), m.
+    pub hips: f64,
+}
+
+/// The balance controller's evolving state.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Balance {
+    /// The state now.
+    pub stance: Stance,
+    /// When it began, s.
+    since: f64,
+    /// How long this knockdown keeps the body down, s.
+    down_for: f64,
+    /// Knockdowns and get-ups, counted.
+    pub knockdowns: u32,
+    /// Get-ups counted.
+    pub get_ups: u32,
+    /// The last measurement.
+    pub last: BalanceState,
+}
+
+/// Gravity, m/s^2.
+const G: f64 = 9.81;
+
+impl Balance {
+    /// Measure the body: centre of mass, capture point, tilt, and how far
+    /// the capture point is outside the planted feet's polygon.
+    pub fn measure(world: &World, legs: &Legs) -> BalanceState {
+        let phys = &world.phys;
+        let (mut moment, mut momentum, mut mass) = legs.mass_moment(phys);
+        for seg in world.vh_bodies() {
+            let rb = world.rb(seg);
+            moment += rb.center_of_mass() * rb.mass();
+            momentum += rb.linvel() * rb.mass();
+            mass += rb.mass();
+        }
+        let com = (moment / mass).as_dvec3();
+        let v = (momentum / mass).as_dvec3();
+        let w0 = (G / com.y.max(0.2)).sqrt();
+        let capture = DVec3::new(com.x + v.x / w0, 0.0, com.z + v.z / w0);
+        let trunk_up = *world.rb(Seg::Torso).rotation() * Vec3::Y;
+        let tilt = f64::from(trunk_up.y.clamp(-1.0, 1.0).acos());
+        let hips = f64::from(legs.rb(phys, Part::Pelvis).translation().y);
+        // The support polygon: the soles of the feet on the canvas, as
+        // their corners (the hull's distance is approximated by the
+        // distance to the segment between the feet's centres, widened by
+        // half a foot).
+        let feet: Vec<(DVec3, f64)> = (0..2)
+            .filter(|&k| legs.on_canvas(phys, Part::Foot(k)))
+            .map(|k| legs.foot_ground(phys, k))
+            .collect();
+        let outside = match feet.as_slice() {
+            [] => f64::INFINITY,
+            [(a, _)] => (capture - a.with_y(0.0)).length() - 0.1,
+            [(a, _), (b, _), ..] => {
+                let (a, b) = (a.with_y(0.0), b.with_y(0.0));
+                let ab = b - a;
+                let u = ((capture - a).dot(ab) / ab.length_squared().max(1e-9)).clamp(0.0, 1.0);
+                (capture - (a + ab * u)).length() - 0.1
+            }
+        };
+        BalanceState {
+            com,
+            com_velocity: v,
+            capture,
+            outside,
+            tilt,
+            hips,
+        }
+    }
+
+    /// Advance the states (B5): `damage` (0-1) sets how long a knockdown
+    /// keeps the body down. Returns `true` on the tick it is up again.
+    pub fn update(&mut self, p: &BalanceParams, s: &BalanceState, damage: f64, t: f64) -> bool {
+        self.last = *s;
+        let since = t - self.since;
+        let next = match self.stance {
+            Stance::Standing if s.tilt > p.fall_tilt_deg.to_radians() || s.hips < p.fall_height => {
+                self.knockdowns += 1;
+                Some(Stance::Falling)
+            }
+            Stance::Falling if s.hips < 0.45 && s.com_velocity.length() < 0.3 || since > 2.0 => {
+                self.down_for = p.down_time + p.down_per_damage * damage.clamp(0.0, 1.0);
+                Some(Stance::Down)
+            }
+            Stance::Down if since > self.down_for => Some(Stance::Rising),
+            Stance::Rising if since > p.rise_time && s.tilt < 0.35 && s.hips > 0.75 => {
+                self.get_ups += 1;
+                Some(Stance::Standing)
+            }
+            // A rise that fails goes down again and tries once more.
+            Stance::Rising if since > 3.0 * p.rise_time => Some(Stance::Down),
+            _ => None,
+        };
+        if let Some(n) = next {
+            self.stance = n;
+            self.since = t;
+        }
+        next == Some(Stance::Standing)
+    }
+
+    /// How the planned pelvis is sent this tick (B4): within the leash of
+    /// where the body is, or to the capture point when it is outside the
+    /// feet. Returns the pelvis's ground point and velocity.
+    pub fn steer(&self, p: &BalanceParams, planned: DVec3, body: DVec3) -> (DVec3, Option<DVec3>) {
+        let s = &self.last;
+        if self.stance == Stance::Standing && s.outside > p.step_margin {
+            return (s.capture, Some(s.com_velocity.with_y(0.0)));
+        }
+        let d = (planned - body).with_y(0.0);
+        let d = d.clamp_length_max(p.leash);
+        (body.with_y(0.0) + d, None)
+    }
+
+    /// Muscle tone now: 1 up, `down_tone` falling and down, a ramp back
+    /// while rising.
+    pub fn tone(&self, p: &BalanceParams, t: f64) -> f64 {
+        match self.stance {
+            Stance::Standing => 1.0,
+            Stance::Falling | Stance::Down => p.down_tone,
+            Stance::Rising => {
+                let u = ((t - self.since) / (0.4 * p.rise_time)).clamp(0.0, 1.0);
+                p.down_tone + (1.0 - p.down_tone) * u
+            }
+        }
+    }
+
+    /// The share of the rise's push still given (1 at the start, 0 by its
+    /// end).
+    fn push(&self, p: &BalanceParams, t: f64) -> f64 {
+        if self.stance != Stance::Rising {
+            return 0.0;
+        }
+        let u = (t - self.since) / p.rise_time;
+        (1.0 - (u - 0.6).max(0.0) / 0.4).clamp(0.0, 1.0)
+    }
+
+    /// Drive the lower body for one tick (B3): each joint's motor toward
+    /// the posture `reference` plans, the stance legs' weight and the
+    /// hanging parts' as feed-forward torques, and while rising the push
+    /// that lifts the hips (B5).
+    pub fn actuate(&self, world: &mut World, reference: &LowerBody, body: &BodyParams, t: f64) {
+        let Some(legs) = world.legs.clone() else {
+            return;
+        };
+        let p = &body.balance;
+        let dt = world.dt as f32;
+        let tone = self.tone(p, t) as f32;
+        let planned = reference.legs(body);
+        // Desired world rotations: the pelvis turned with the body, the
+        // trunk as the waist law has it, each leg as posed.
+        let pelvis_rot = Quat::from_rotation_y(reference.facing() as f32);
+        let trunk_rot = reference.trunk_rotation().as_quat();
+        let leg_rot = [0, 1].map(|k| legs.leg_rotations(k, &planned[k]));
+        let total_mass = anthro::MASS as f32;
+        let com = self.last.com.as_vec3();
+        let up = matches!(self.stance, Stance::Standing | Stance::Rising);
+        let on = [0, 1].map(|k| legs.on_canvas(&world.phys, Part::Foot(k)));
+        let shares = weight_shares(&legs, &world.phys, on, com);
+        // The ground's push the stance legs ask for: the weight, and a
+        // horizontal spring-damper on the centre of mass toward the
+        // planned pelvis (the ankle strategy, B3).
+        let weight = total_mass * G as f32;
+        let planned_com = reference.pelvis().as_vec3();
+        let v = self.last.com_velocity.as_vec3();
+        let k_com = p.com_stiffness as f32 * weight / com.y.max(0.3);
+        let d_com = p.com_damping as f32 * 2.0 * (k_com * total_mass).sqrt();
+        let horizontal = (-(com - planned_com) * k_com - v * d_com).with_y(0.0);
+        let support = Vec3::Y * weight + horizontal.clamp_length_max(0.5 * weight);
+        let mut impulses = Vec::with_capacity(8);
+        for j in Joint::ALL {
+            let parent_des = match j.parent() {
+                Part::Pelvis => pelvis_rot,
+                Part::Thigh(k) => leg_rot[k][0],
+                Part::Shank(k) => leg_rot[k][1],
+                Part::Foot(k) => leg_rot[k][2],
+            };
+            let child_des = match j {
+                Joint::Waist => trunk_rot,
+                Joint::Hip(k) => leg_rot[k][0],
+                Joint::Knee(k) => leg_rot[k][1],
+                Joint::Ankle(k) => leg_rot[k][2],
+            };
+            let (gains, max) = match j {
+                Joint::Waist => (&p.waist, body.waist_max_torque[1] as f32),
+                Joint::Hip(_) => (&p.hip, MAX_HIP),
+                Joint::Knee(_) => (&p.knee, MAX_KNEE),
+                Joint::Ankle(_) => (&p.ankle, MAX_ANKLE),
+            };
+            let target = (parent_des.inverse() * child_des).normalize();
+            let (kp, kd) = (gains.kp as f32 * tone, gains.kd as f32 * tone);
+            legs.drive(&mut world.phys, j, target, kp, kd, max * tone.max(0.05));
+            if !up {
+                continue;
+            }
+            // Feed-forward: a stance leg carries its share of the weight,
+            // the ground's push under its foot (B3); the waist and a
+            // swinging leg hold what hangs on them.
+            let pivot = legs.pivot(&world.phys, j);
+            let stance = j.leg().map_or(0.0, |k| shares[k]);
+            let tau = if let (true, Some(k)) = (stance > 0.0, j.leg()) {
+                // The leg's share of the weight, pushed up from under its
+                // foot (the sole's centre): each joint holds its moment.
+                let sole = legs.foot_ground(&world.phys, k).0.as_vec3();
+                (pivot - sole).cross(support * stance)
+            } else {
+                match j {
+                    Joint::Waist => world.gravity_torque_about(Seg::Torso, pivot, Vec3::ZERO),
+                    _ => hang_torque(&legs, &world.phys, j.distal(), pivot),
+                }
+            }
+            .clamp_length_max(max);
+            let child_h = j.child().map_or(legs.trunk, |c| legs.handles[c.index()]);
+            impulses.push((legs.handles[j.parent().index()], child_h, tau * dt));
+        }
+        let push = self.push(p, t) as f32;
+        let lift = (push > 0.0).then(|| {
+            let phys = &world.phys;
+            let pelvis = legs.rb(phys, Part::Pelvis);
+            let height = planned[0].hip.y as f32;
+            let err = height - pelvis.translation().y;
+            let weight = total_mass * G as f32;
+            let f = (weight * (1.0 + 4.0 * err) - 2.0 * total_mass * pelvis.linvel().y)
+                .clamp(0.0, p.rise_push as f32 * weight);
+            // The trunk brought upright by the same push (hands on the
+            // canvas, then on the knees).
+            let trunk = &phys.bodies[legs.trunk];
+            let fix = (*trunk.rotation() * Vec3::Y).cross(Vec3::Y);
+            let torque = (fix * 300.0 - trunk.angvel() * 60.0).clamp_length_max(250.0);
+            (Vec3::Y * f * push, torque * push)
+        });
+        for (ph, ch, imp) in impulses {
+            world.torque_impulse(ch, imp);
+            world.torque_impulse(ph, -imp);
+        }
+        if let Some((force, torque)) = lift {
+            world.impulse(legs.handles[Part::Pelvis.index()], force * dt);
+            world.torque_impulse(legs.trunk, torque * dt);
+        }
+    }
+}
+
+/// Strongest joint torques, N m: ankle plantarflexion about 150-250 in
+/// young men (Anderson, Madigan & Nussbaum 2007, J. Biomech. 40:3105),
+/// knee extension and hip extension about 250-300 (same source).
+const MAX_ANKLE: f32 = 200.0;
+const MAX_KNEE: f32 = 300.0;
+const MAX_HIP: f32 = 300.0;
+
+/// The feet's shares of the weight: by where the centre of mass lies
+/// between the feet on the canvas (one foot on it carries it all).
+fn weight_shares(
+    legs: &Legs,
+    phys: &rapier3d::prelude::PhysicsWorld,
+    on: [bool; 2],
+    com: Vec3,
+) -> [f32; 2] {
+    match on {
+        [true, true] => {
+            let a = legs.foot_ground(phys, 0).0.as_vec3().with_y(0.0);
+            let b = legs.foot_ground(phys, 1).0.as_vec3().with_y(0.0);
+            let ab = b - a;
+            let u = ((com.with_y(0.0) - a).dot(ab) / ab.length_squared().max(1e-6)).clamp(0.0, 1.0);
+            [1.0 - u, u]
+        }
+        [true, false] => [1.0, 0.0],
+        [false, true] => [0.0, 1.0],
+        [false, false] => [0.0, 0.0],
+    }
+}
+
+/// The torque that holds `parts` (hanging from `pivot`) against gravity.
+fn hang_torque(
+    legs: &Legs,
+    phys: &rapier3d::prelude::PhysicsWorld,
+    parts: &[Part],
+    pivot: Vec3,
+) -> Vec3 {
+    let mut tau = Vec3::ZERO;
+    for &part in parts {
+        let rb = legs.rb(phys, part);
+        tau -= (rb.center_of_mass() - pivot).cross(phys.gravity * rb.mass());
+    }
+    tau
+}
