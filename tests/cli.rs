@@ -210,6 +210,27 @@ fn overrides_and_arguments_are_checked_before_anything_runs() {
     assert!(err.contains(".png"), "{err}");
     let (code, _, err) = shisen(&["render", "default", "--at", "1e12", "--out", "x.png"]);
     assert_eq!(code, 2, "{err}");
+    // Past the scene's end (the default scene lasts 10 s): refused, not
+    // rendered at the end.
+    let (code, _, err) = shisen(&["render", "default", "--at", "100", "--out", "x.png"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--at 100") && err.contains("end (10 s)"),
+        "{err}"
+    );
+    // The option at fault is the one named.
+    let (code, _, err) = shisen(&[
+        "render", "default", "--at", "1", "--until", "2", "--fps", "100000", "--out", "x.png",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("--fps 100000") && !err.contains("--slow"),
+        "{err}"
+    );
+    // A trace stride with no trace is a mistake, not ignored.
+    let (code, _, err) = shisen(&["run", &p, "--trace-every", "10"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--trace"), "{err}");
     let (code, _, err) = shisen(&["soak", "--minutes", "1e5"]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("--force"), "{err}");

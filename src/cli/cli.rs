@@ -85,8 +85,8 @@ pub enum Command {
         /// Write the trace (CSV) here (`-`: standard output).
         #[arg(long)]
         trace: Option<PathBuf>,
-        /// Write every Nth tick to the trace.
-        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
+        /// Write every Nth tick to the trace (with `--trace`).
+        #[arg(long, default_value_t = 1, requires = "trace", value_parser = clap::value_parser!(u64).range(1..))]
         trace_every: u64,
         /// Override the scene's seed.
         #[arg(long)]

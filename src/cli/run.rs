@@ -29,16 +29,20 @@ pub fn render(
         anyhow::bail!("--at: must be a non-negative number of seconds, got {at}");
     }
     if let Some((until, fps, slow)) = animation {
-        if !(1..=100).contains(&slow) || fps > 60 * slow {
-            anyhow::bail!(
-                "--slow {slow}: must be 1-100, and --fps / --slow at most 60 (plays at {fps}/{slow} a second)"
-            );
-        }
         if !(until.is_finite() && until > at) {
             anyhow::bail!("--until {until}: must be after --at ({at} s)");
         }
         if !(1..=1000).contains(&fps) {
             anyhow::bail!("--fps {fps}: must be 1-1000");
+        }
+        if !(1..=100).contains(&slow) {
+            anyhow::bail!("--slow {slow}: must be 1-100");
+        }
+        if fps > 60 * slow {
+            anyhow::bail!(
+                "--fps {fps} with --slow {slow} plays {} frames a second; at most 60 (lower --fps or raise --slow)",
+                fps / slow
+            );
         }
         if (until - at) * f64::from(fps) > 600.0 {
             anyhow::bail!(
@@ -57,6 +61,16 @@ pub fn render(
         anyhow::bail!("--out {}: must name a .png file", out.display());
     }
     let loaded = load(scene)?;
+    let duration = loaded.scene.duration;
+    let end = animation.map_or(at, |(until, _, _)| until);
+    if end > duration {
+        let flag = if animation.is_some() {
+            "--until"
+        } else {
+            "--at"
+        };
+        anyhow::bail!("{flag} {end}: after the scene's end ({duration} s)");
+    }
     let mut plan = Outputs::new().file("--out", out);
     if scene != "default" {
         plan = plan.input(Path::new(scene));
