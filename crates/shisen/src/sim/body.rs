@@ -135,6 +135,14 @@ impl Sim {
         (offset, rotation)
     }
 
+    /// Your avatar's frame: its own frame (facing +Z, as the VH's) turned
+    /// to face the VH and put on the ground under its rest head.
+    pub fn avatar_frame(&self) -> glam::DAffine3 {
+        let h = self.world.plan.opponent_head.as_dvec3();
+        glam::DAffine3::from_translation(DVec3::new(h.x, 0.0, h.z))
+            * glam::DAffine3::from_rotation_y(std::f64::consts::PI)
+    }
+
     /// The ground point under the waist joint, world: the physical
     /// pelvis's where it is physical, the plan's where it is driven.
     pub fn pelvis(&self) -> DVec3 {

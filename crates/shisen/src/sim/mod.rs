@@ -580,14 +580,6 @@ impl Sim {
             })
     }
 
-    /// Your avatar's frame: its own frame (facing +Z, as the VH's) turned
-    /// to face the VH and put on the ground under its rest head.
-    pub fn avatar_frame(&self) -> glam::DAffine3 {
-        let h = self.world.plan.opponent_head.as_dvec3();
-        glam::DAffine3::from_translation(DVec3::new(h.x, 0.0, h.z))
-            * glam::DAffine3::from_rotation_y(std::f64::consts::PI)
-    }
-
     /// Arms: inverse kinematics of the planned glove positions, in the
     /// trunk's frame; the velocity reference comes from differencing the
     /// IK solution.
