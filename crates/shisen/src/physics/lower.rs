@@ -404,6 +404,28 @@ impl LowerBody {
         }
     }
 
+    /// Step planted foot `k` back to its place under the pelvis (a foot
+    /// the body slid or twisted on the canvas, re-placed as a boxer
+    /// resets the stance), if both feet are planted. Returns whether it
+    /// steps.
+    pub fn replace_foot(&mut self, p: &BodyParams, k: usize, t: f64) -> bool {
+        if self.feet.iter().any(|f| f.swing.is_some()) {
+            return false;
+        }
+        self.feet[k].swing = Some(Swing {
+            from: self.feet[k].at,
+            to: self.pelvis + place(p, k, self.facing),
+            t0: t,
+        });
+        self.steps += 1;
+        true
+    }
+
+    /// Foot `k`'s planned heading (yaw about +Y, 0 along +Z).
+    pub fn foot_heading(&self, p: &BodyParams, k: usize) -> f64 {
+        foot_yaw(p, k) + self.facing
+    }
+
     /// Standing at rest in the stance with the pelvis's ground point at
     /// `pelvis`, turned to `facing` (a body that got up where it fell).
     pub fn standing_at(p: &BodyParams, pelvis: DVec3, facing: f64) -> Self {

@@ -2,6 +2,8 @@
 //! planned posture, with the pelvis driven along the plan or balanced on
 //! physical legs; your avatar's body carried under its head.
 
+use std::f64::consts::{PI, TAU};
+
 use glam::{DQuat, DVec3};
 
 use super::Sim;
@@ -10,6 +12,10 @@ use crate::physics::body::OpponentPart;
 use crate::physics::body::Seg;
 use crate::physics::legs::{Joint, Part};
 use crate::physics::lower::{BodyCommand, LowerBody, Pelvis, WAIST_REST};
+
+/// A planted foot twisted this far from its heading is re-placed, deg
+/// (our choice: a boxer's rear foot pivots some 20 deg in a cross).
+const FOOT_TWIST: f64 = 25.0;
 
 impl Sim {
     /// Body: the lower body steps and the waist turns toward the planned
@@ -89,7 +95,13 @@ impl Sim {
         }
         for k in 0..2 {
             if legs.on_canvas(phys, Part::Foot(k)) {
-                self.lower.replant(k, legs.foot_ground(phys, k).0);
+                let (at, heading) = legs.foot_ground(phys, k);
+                self.lower.replant(k, at);
+                // A foot twisted far from its heading is re-placed.
+                let off = (heading - self.lower.foot_heading(&p, k) + PI).rem_euclid(TAU) - PI;
+                if self.balance.stance.up() && off.abs() > FOOT_TWIST.to_radians() {
+                    self.lower.replace_foot(&p, k, t + dt);
+                }
             }
         }
         let at = |k: f64| self.behaviour.posture(t + dt + k * dt);
@@ -231,20 +243,58 @@ mod tests {
         run(&mut free, 0.3);
         let (d1, f1) = (driven.pelvis(), free.pelvis());
         assert!((d1 - d0).length() < 1e-9, "driven: {d0} -> {d1}");
+        // 30 N s is 0.4 m/s on the whole body: held by the ankles and hips
+        // within a few centimetres, as a person's (Pai & Patton 1997).
+        let back = f0.z - f1.z;
         assert!(
-            f1.z - f0.z < -0.05,
+            (0.01..0.15).contains(&back),
             "the push moved the body back: {f0} -> {f1}"
         );
         assert_eq!(free.resets, 0);
         assert!(free.world.is_finite());
     }
 
-    /// Issue 44's first must-show: left alone, the VH stands.
+    /// Left alone, a physical VH stands: 30 s without a fall or a reset,
+    /// its pelvis within a few centimetres of where it started.
     #[test]
-    #[ignore = "the balance controller does not yet keep the VH up: it falls within 2-8 s (docs/model/balance.md)"]
-    fn a_physical_vh_left_alone_stands_for_a_minute() {
+    fn a_physical_vh_left_alone_stands() {
         let mut sim = pushed(Pelvis::Balanced, DVec3::ZERO);
-        for _ in 0..60_000 {
+        for _ in 0..30_000 {
+            sim.step();
+            assert_eq!(sim.balance.stance, Stance::Standing, "at {}", sim.time());
+        }
+        assert_eq!(sim.resets, 0);
+        let at = sim.pelvis();
+        assert!(at.length() < 0.1, "stood where it was: {at}");
+    }
+
+    /// A shove no one could stand against puts it down; it lies for a
+    /// while, then gets up by itself.
+    #[test]
+    fn a_knockdown_and_a_get_up() {
+        let mut sim = pushed(Pelvis::Balanced, DVec3::new(0.0, 0.0, -150.0));
+        run(&mut sim, 3.0);
+        assert_eq!(sim.balance.knockdowns, 1, "{:?}", sim.balance.stance);
+        let mut up_at = None;
+        for _ in 0..10_000 {
+            sim.step();
+            if sim.balance.get_ups > 0 {
+                up_at = Some(sim.time());
+                break;
+            }
+        }
+        let up_at = up_at.expect("up within 10 s");
+        assert!(up_at > 3.5, "it stayed down a while: up at {up_at}");
+        assert!(sim.world.is_finite());
+    }
+
+    /// Issue 44's first must-show: left alone for ten minutes, the VH
+    /// stands.
+    #[test]
+    #[ignore = "not yet: the balanced VH stands about a minute, then a footstep goes wrong and it falls (docs/model/balance.md)"]
+    fn a_physical_vh_left_alone_stands_for_ten_minutes() {
+        let mut sim = pushed(Pelvis::Balanced, DVec3::ZERO);
+        for _ in 0..600_000 {
             sim.step();
             assert_eq!(sim.balance.stance, Stance::Standing, "at {}", sim.time());
         }

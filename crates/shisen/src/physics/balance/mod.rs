@@ -160,7 +160,7 @@ impl Balance {
                 Some(Stance::Down)
             }
             Stance::Down if since > self.down_for => Some(Stance::Rising),
-            Stance::Rising if since > p.rise_time && s.tilt < 0.35 && s.hips > 0.75 => {
+            Stance::Rising if since > p.rise_time && s.tilt < 0.5 && s.hips > 0.7 => {
                 self.get_ups += 1;
                 Some(Stance::Standing)
             }
@@ -242,7 +242,28 @@ impl Balance {
         let k_com = p.com_stiffness as f32 * weight / com.y.max(0.3);
         let d_com = p.com_damping as f32 * 2.0 * (k_com * total_mass).sqrt();
         let horizontal = (-(com - planned_com) * k_com - v * d_com).with_y(0.0);
-        let support = Vec3::Y * weight + horizontal.clamp_length_max(0.5 * weight);
+        // ... and the hips held at their planned height.
+        let pelvis_rb = legs.rb(&world.phys, Part::Pelvis);
+        let hips = 0.5 * (planned[0].hip.y + planned[1].hip.y) as f32;
+        let k_h = 10.0 * weight;
+        let vertical = k_h * (hips - pelvis_rb.translation().y)
+            - 2.0 * (k_h * total_mass).sqrt() * pelvis_rb.linvel().y;
+        let support = Vec3::Y * (weight + vertical.clamp(-0.5 * weight, weight))
+            + horizontal.clamp_length_max(0.5 * weight);
+        // The pelvis kept turned as planned, against the trunk's weight on
+        // it: a moment the stance legs give (virtual model control: Pratt
+        // et al. 2001, Int. J. Robot. Res. 20:129).
+        let waist_pivot = legs.pivot(&world.phys, Joint::Waist);
+        let mut turn_err = pelvis_rot * pelvis_rb.rotation().inverse();
+        if turn_err.w < 0.0 {
+            turn_err = -turn_err;
+        }
+        let moment = turn_err.to_scaled_axis() * PELVIS_KP - pelvis_rb.angvel() * PELVIS_KD
+            + world.gravity_torque_about(Seg::Torso, waist_pivot, Vec3::ZERO);
+        // Not about the vertical: a sole's friction holds little twist (the
+        // feet spun on the canvas when asked to), so the hips' servos keep
+        // the pelvis's heading.
+        let moment = moment.with_y(0.0);
         let mut impulses = Vec::with_capacity(8);
         for j in Joint::ALL {
             let parent_des = match j.parent() {
@@ -264,7 +285,13 @@ impl Balance {
                 Joint::Ankle(_) => (&p.ankle, MAX_ANKLE),
             };
             let target = (parent_des.inverse() * child_des).normalize();
-            let (kp, kd) = (gains.kp as f32 * tone, gains.kd as f32 * tone);
+            // A stance leg's posture is held by the force it gives (below);
+            // its joints' own servos keep only a share of their gains.
+            let posture = 1.0 - 0.8 * j.leg().map_or(0.0, |k| shares[k]);
+            let (kp, kd) = (
+                gains.kp as f32 * tone * posture,
+                gains.kd as f32 * tone * posture,
+            );
             legs.drive(&mut world.phys, j, target, kp, kd, max * tone.max(0.05));
             if !up {
                 continue;
@@ -278,7 +305,7 @@ impl Balance {
                 // The leg's share of the weight, pushed up from under its
                 // foot (the sole's centre): each joint holds its moment.
                 let sole = legs.foot_ground(&world.phys, k).0.as_vec3();
-                (pivot - sole).cross(support * stance)
+                (pivot - sole).cross(support * stance) - moment * stance
             } else {
                 match j {
                     Joint::Waist => world.gravity_torque_about(Seg::Torso, pivot, Vec3::ZERO),
@@ -291,27 +318,37 @@ impl Balance {
         }
         let push = self.push(p, t) as f32;
         let lift = (push > 0.0).then(|| {
+            // The rise's help (B5): the hips lifted to standing height and
+            // the pelvis and trunk turned upright, as the arms pushing off
+            // the canvas and then the knees would.
             let phys = &world.phys;
             let pelvis = legs.rb(phys, Part::Pelvis);
-            let height = planned[0].hip.y as f32;
-            let err = height - pelvis.translation().y;
-            let weight = total_mass * G as f32;
+            let err = hips - pelvis.translation().y;
             let f = (weight * (1.0 + 4.0 * err) - 2.0 * total_mass * pelvis.linvel().y)
                 .clamp(0.0, p.rise_push as f32 * weight);
-            // The trunk brought upright by the same push (hands on the
-            // canvas, then on the knees).
+            let upright = |rb: &rapier3d::prelude::RigidBody, want: Quat| {
+                let mut e = want * rb.rotation().inverse();
+                if e.w < 0.0 {
+                    e = -e;
+                }
+                (e.to_scaled_axis() * 600.0 - rb.angvel() * 80.0).clamp_length_max(400.0)
+            };
             let trunk = &phys.bodies[legs.trunk];
-            let fix = (*trunk.rotation() * Vec3::Y).cross(Vec3::Y);
-            let torque = (fix * 300.0 - trunk.angvel() * 60.0).clamp_length_max(250.0);
-            (Vec3::Y * f * push, torque * push)
+            (
+                Vec3::Y * f * push,
+                upright(pelvis, pelvis_rot) * push,
+                upright(trunk, trunk_rot) * push,
+            )
         });
         for (ph, ch, imp) in impulses {
             world.torque_impulse(ch, imp);
             world.torque_impulse(ph, -imp);
         }
-        if let Some((force, torque)) = lift {
-            world.impulse(legs.handles[Part::Pelvis.index()], force * dt);
-            world.torque_impulse(legs.trunk, torque * dt);
+        if let Some((force, pelvis_torque, trunk_torque)) = lift {
+            let pelvis_h = legs.handles[Part::Pelvis.index()];
+            world.impulse(pelvis_h, force * dt);
+            world.torque_impulse(pelvis_h, pelvis_torque * dt);
+            world.torque_impulse(legs.trunk, trunk_torque * dt);
         }
     }
 }
@@ -320,6 +357,11 @@ impl Balance {
 /// young men (Anderson, Madigan & Nussbaum 2007, J. Biomech. 40:3105),
 /// knee extension and hip extension about 250-300 (same source).
 const MAX_ANKLE: f32 = 200.0;
+/// The pelvis's turn held by the stance legs: stiffness N m/rad and
+/// damping N m s/rad (our calibration: the trunk and pelvis, about 4 kg
+/// m^2, at about 20 rad/s).
+const PELVIS_KP: f32 = 1600.0;
+const PELVIS_KD: f32 = 160.0;
 const MAX_KNEE: f32 = 300.0;
 const MAX_HIP: f32 = 300.0;
 

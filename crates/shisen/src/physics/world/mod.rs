@@ -100,6 +100,10 @@ pub const SOLVER_SUBSTEPS: usize = 1;
 /// 0.6 mm for 5 % more cost; one substep of one iteration: 5.6 mm).
 pub const SOLVER_ITERATIONS: usize = 2;
 
+/// Velocity iterations with a physical pelvis (the balanced body's feet
+/// on the canvas need them; see [`World::with_body`]).
+pub const BALANCED_ITERATIONS: usize = 4;
+
 /// Collision group of the VH (it does not collide with itself).
 const VH_GROUP: Group32 = Group32::GROUP_1;
 type Group32 = rapier3d::geometry::Group;
@@ -162,6 +166,12 @@ impl World {
         );
         let mut phys = empty_world(dt);
         let mut bodies = Vec::new();
+        if free {
+            // Feet on the canvas under a body's weight creep and twist with
+            // two velocity iterations (1-2 cm and 0.01 rad a second); four
+            // hold them (a few mm a minute).
+            phys.integration_parameters.num_internal_pgs_iterations = BALANCED_ITERATIONS;
+        }
         add_segments(&mut phys, &plan, &mut bodies, free);
         let anchor_parent = join_segments(&mut phys, &plan, &bodies);
         let legs = body.filter(|_| free).map(|b| {
