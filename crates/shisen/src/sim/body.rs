@@ -291,7 +291,7 @@ mod tests {
     /// Issue 44's first must-show: left alone for ten minutes, the VH
     /// stands.
     #[test]
-    #[ignore = "not yet: the balanced VH stands about a minute, then a footstep goes wrong and it falls (docs/model/balance.md)"]
+    #[ignore = "not yet: left alone, the balanced VH stands about five minutes, until its feet have crept far enough to step, and the step goes wrong (docs/model/balance.md)"]
     fn a_physical_vh_left_alone_stands_for_ten_minutes() {
         let mut sim = pushed(Pelvis::Balanced, DVec3::ZERO);
         for _ in 0..600_000 {

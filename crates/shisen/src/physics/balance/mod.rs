@@ -231,7 +231,9 @@ impl Balance {
         let total_mass = anthro::MASS as f32;
         let com = self.last.com.as_vec3();
         let up = matches!(self.stance, Stance::Standing | Stance::Rising);
-        let on = [0, 1].map(|k| legs.on_canvas(&world.phys, Part::Foot(k)));
+        // A foot the plan swings carries no weight, whether or not it has
+        // left the canvas yet: its leg lifts it.
+        let on = [0, 1].map(|k| reference.planted(k) && legs.on_canvas(&world.phys, Part::Foot(k)));
         let shares = weight_shares(&legs, &world.phys, on, com);
         // The ground's push the stance legs ask for: the weight, and a
         // horizontal spring-damper on the centre of mass toward the

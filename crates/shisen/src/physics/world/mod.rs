@@ -102,7 +102,7 @@ pub const SOLVER_ITERATIONS: usize = 2;
 
 /// Velocity iterations with a physical pelvis (the balanced body's feet
 /// on the canvas need them; see [`World::with_body`]).
-pub const BALANCED_ITERATIONS: usize = 4;
+pub const BALANCED_ITERATIONS: usize = 8;
 
 /// Collision group of the VH (it does not collide with itself).
 const VH_GROUP: Group32 = Group32::GROUP_1;
@@ -168,8 +168,9 @@ impl World {
         let mut bodies = Vec::new();
         if free {
             // Feet on the canvas under a body's weight creep and twist with
-            // two velocity iterations (1-2 cm and 0.01 rad a second); four
-            // hold them (a few mm a minute).
+            // two velocity iterations (1-2 cm and 0.01 rad a second), with
+            // four by 3 mm a second; eight hold them to about a centimetre
+            // a minute (docs/model/balance.md).
             phys.integration_parameters.num_internal_pgs_iterations = BALANCED_ITERATIONS;
         }
         add_segments(&mut phys, &plan, &mut bodies, free);
