@@ -217,6 +217,15 @@ mod tests {
         assert!(e.starts_with("t.ron:3:") && e.contains("not both"), "{e}");
         let e = err("Scene(duration: 1e12)");
         assert!(e.contains("duration: must be <= 86400"), "{e}");
+        // A window no tick falls in, and a body with no name (issue 50).
+        let e = err(
+            "Scene(duration: 2.0, expect: [GazeReaches(target: \"head\", from: 1.0, to: 1.0)])",
+        );
+        assert!(e.contains("expect[0]") && e.contains("is empty"), "{e}");
+        let e = err(
+            "Scene(duration: 2.0, bodies: [(name: \"\", shape: Ball(0.05), position: (0.0, 1.0, 1.0))])",
+        );
+        assert!(e.contains("bodies[0].name") && e.contains("empty"), "{e}");
     }
 
     #[test]

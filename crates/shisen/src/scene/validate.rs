@@ -69,6 +69,12 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
     for (i, b) in scene.bodies.iter().enumerate() {
         // `point` and `opponent_body` name gaze targets that are no body
         // (a fixed point, the opponent's trunk).
+        if b.name.trim().is_empty() {
+            return Err(err(
+                format!("bodies[{i}].name"),
+                "must not be empty: traces, expectations and gaze targets name bodies by it".into(),
+            ));
+        }
         if names.contains(&b.name.as_str())
             || b.name.starts_with("vh_")
             || ["point", "opponent_body"].contains(&b.name.as_str())
@@ -315,11 +321,16 @@ pub fn check_duration(scene: &Scene, duration: f64, events: bool) -> Result<(), 
     for (i, x) in scene.expect.iter().enumerate() {
         let window = x.window(duration);
         if let Some((from, to)) = window
-            && (to < from || to > duration + 1e-9)
+            && (to <= from || to > duration + 1e-9)
         {
+            let why = if to <= from {
+                "is empty: `to` must be after `from` (no tick falls in it)"
+            } else {
+                "must be inside the run"
+            };
             return bad(
                 format!("expect[{i}]"),
-                format!("window [{from}, {to}] must be ordered and inside the run (0, {duration})"),
+                format!("window [{from}, {to}] {why} (0, {duration})"),
             );
         }
     }
