@@ -38,6 +38,7 @@ mod tests {
         let mut o = crate::oculomotor::OculomotorParams::default();
         assert_eq!(violations(&o), vec![]);
         o.timing = TimingParams::seed();
+        o.otolith = crate::oculomotor::otolith::OtolithParams::seed();
         assert_eq!(violations(&o), vec![]);
         let b = crate::behaviour::BehaviourParams {
             circle_after: Some(3.0),

@@ -284,11 +284,7 @@ impl Behaviour {
         // The plan under way: the action's request, or `None` once it is
         // over; then, idle, maybe an attack.
         let request = match self.plan.clone() {
-            Plan::Evade {
-                threat,
-                kind,
-                until,
-            } => self.evading((threat, kind, until), p, pers, view, t, rng),
+            Plan::Evade { kind, until, .. } => self.evading((kind, until), p, pers, view, t, rng),
             Plan::Guard {
                 threat,
                 hand,

@@ -125,11 +125,12 @@ impl Behaviour {
     }
 
     /// An evasion of `threat` of `kind` under way until `until`: the gaze
-    /// stays on the threat; once it is over, idle, or (a strong boxer) a
-    /// counter out of a slip. The action's request; `None` once idle.
+    /// is anchored on the opponent's head (`a_anchor`); once it is over,
+    /// idle, or (a strong boxer) a counter out of a slip. The action's
+    /// request; `None` once idle.
     pub(super) fn evading(
         &mut self,
-        (threat, kind, until): (BodyId, Evasion, f64),
+        (kind, until): (Evasion, f64),
         p: &BehaviourParams,
         pers: &Personality,
         view: &OpponentView,
@@ -147,7 +148,16 @@ impl Behaviour {
             }
             None
         } else {
-            Some(on_threat(threat, view, pers))
+            // The visual anchor: the opponent's head; the evaded glove
+            // competes bottom-up (a weak anchor lets the eyes chase it).
+            let head = view.parts[0];
+            Some(TopDown {
+                name: view.names[head.index()].clone(),
+                body: Some(head),
+                spot: Spot::Centre,
+                offset: DVec3::ZERO,
+                amount: pers.a_anchor,
+            })
         }
     }
 

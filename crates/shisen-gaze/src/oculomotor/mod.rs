@@ -3,7 +3,8 @@
 //!
 //! The laws live in the submodules, one place each: [`saccade`] (M2-M6),
 //! [`pursuit`] (M7: pursuit, vergence, VOR), [`head`] (start rule, M8, M9),
-//! [`takagi`] (T1) and [`fixation`] (microsaccades). This file composes
+//! [`takagi`] (T1), [`fixation`] (microsaccades) and [`otolith`] (the
+//! translational VOR and counter-roll, H8-H9). This file composes
 //! them into one controller:
 //!
 //! - **eyes**: while the retinal error stays small the binocular model (M7)
@@ -26,6 +27,7 @@
 
 pub mod fixation;
 pub mod head;
+pub mod otolith;
 pub mod pursuit;
 pub mod saccade;
 pub mod takagi;
@@ -42,6 +44,7 @@ use crate::util::math::{angle_between, dir_from_yaw_pitch, yaw_pitch_of};
 
 use fixation::{FixationParams, FixationState};
 use head::{HeadMove, HeadParams};
+use otolith::{Otolith, OtolithParams};
 use pursuit::{
     BinocularParams, BinocularState, EyeInput, angles_to, head_rate_from_angular_velocity,
 };
@@ -90,6 +93,9 @@ pub struct OculomotorParams {
     /// Human reaction times and pursuit limits in front of the laws
     /// ([`timing`]).
     pub timing: TimingParams,
+    /// The otolith reflexes: translational VOR and counter-roll
+    /// ([`otolith`]).
+    pub otolith: OtolithParams,
 }
 
 /// What the controller needs to know this tick.
@@ -143,6 +149,9 @@ pub struct GazeOutput {
     pub eyes: [AxisCommand; 2],
     /// Neck command, relative to the torso.
     pub neck: AxisCommand,
+    /// Ocular torsion (counter-roll, H9), rad, both eyes; about the line
+    /// of sight, so it moves no line of sight (see [`otolith`]).
+    pub torsion: f64,
 }
 
 /// A gaze saccade: each eye's plan lives in the *world* frame (the line of
@@ -205,6 +214,7 @@ pub struct Oculomotor {
     eye_onset: f64,
     prev_goal: Option<[DVec2; 2]>,
     fixation: FixationState,
+    otolith: Otolith,
     out: GazeOutput,
     /// Saccades started so far.
     pub saccades: u32,
@@ -226,6 +236,7 @@ impl Oculomotor {
             aim: Aim::default(),
             eye_onset: f64::NEG_INFINITY,
             prev_goal: None,
+            otolith: Otolith::default(),
             out: GazeOutput::default(),
             saccades: 0,
             started: None,
@@ -281,14 +292,22 @@ impl Oculomotor {
             neck = imposed;
             self.head = None;
         }
-        self.out = GazeOutput { eyes, neck };
+        let torsion =
+            self.otolith
+                .counter_roll(&p.otolith, aim.felt_inv.inverse(), aim.head_angvel, dt); // (H9)
+        self.out = GazeOutput {
+            eyes,
+            neck,
+            torsion,
+        };
         self.out
     }
 
     /// Step 1, where the laws aim: the target once its reaction time is
     /// over, moved by the pursuit drive between saccades (timing.rs,
     /// H1-H3); each eye's goal in the head frame as the vestibular signal
-    /// reports it (H4), and how fast the goals move.
+    /// reports it (H4), seen from where the otoliths report the eyes (H8),
+    /// and how fast the goals move.
     fn aim_step(
         &mut self,
         p: &OculomotorParams,
@@ -308,9 +327,8 @@ impl Oculomotor {
                 .vestibular(&p.timing, input.head_rot, input.head_angvel, dt); // (H4)
         let felt_inv = felt_rot.inverse();
         let point = felt_inv * target;
-        let goal = input
-            .eye_pos
-            .map(|c| angles_to(felt_inv * c, point).clamp(-range, range));
+        let felt_eyes = self.otolith.felt_eyes(&p.otolith, input.eye_pos, dt); // (H8)
+        let goal = felt_eyes.map(|c| angles_to(felt_inv * c, point).clamp(-range, range));
         let goal_rate = match self.prev_goal {
             Some(prev) if !aim.new_target => [(goal[0] - prev[0]) / dt, (goal[1] - prev[1]) / dt],
             _ => [DVec2::ZERO; 2],
@@ -389,6 +407,7 @@ impl Oculomotor {
             return;
         }
         self.aim.anchor();
+        self.otolith.anchor();
         let prev = self.out;
         let plans = [0, 1].map(|k| {
             let (sy, sp) = yaw_pitch_of(world_dir(input, prev.eyes[k].angles));

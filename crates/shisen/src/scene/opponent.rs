@@ -136,6 +136,7 @@ impl Opponent {
         b.target_spread = l.spread;
         pers.evade = l.evade;
         pers.counter = l.counter;
+        pers.a_anchor = l.a_anchor;
         let fresh = crate::sim::effort::EffortParams::default();
         p.effort.punch_cost = fresh.punch_cost * l.costs;
         p.effort.round_drain = fresh.round_drain * l.costs;
@@ -179,6 +180,8 @@ struct LevelValues {
     /// Shares of seen punches evaded, and of slips countered.
     evade: f64,
     counter: f64,
+    /// The gaze anchor's amount through an evasion.
+    a_anchor: f64,
     /// What a punch and a round cost, against the default's.
     costs: f64,
 }
@@ -193,6 +196,7 @@ impl Level {
                 spread: 0.06,
                 evade: 0.15,
                 counter: 0.0,
+                a_anchor: 1.0,
                 costs: 1.5,
             },
             Level::Amateur => LevelValues {
@@ -202,6 +206,7 @@ impl Level {
                 spread: 0.03,
                 evade: 0.7,
                 counter: 0.3,
+                a_anchor: 6.0,
                 costs: 1.0,
             },
             Level::Pro => LevelValues {
@@ -211,6 +216,7 @@ impl Level {
                 spread: 0.02,
                 evade: 0.8,
                 counter: 0.5,
+                a_anchor: 8.0,
                 costs: 0.75,
             },
         }

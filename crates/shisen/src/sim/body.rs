@@ -23,14 +23,18 @@ impl Sim {
     /// and out with it); the trunk is put where they carry it.
     pub(super) fn plan_body(&mut self, t: f64) -> (DVec3, glam::DQuat) {
         let dt = self.model.dt;
+        let carried = self
+            .timeline
+            .carry
+            .map_or(DVec3::ZERO, |c| c.offset(t + dt));
         let lunge = self.behaviour.torso_offset(t + dt);
         let p = &self.model.params.body;
         if p.human && p.pelvis == Pelvis::Balanced && self.world.legs.is_some() {
             return self.balance_body(t, lunge);
         }
         if !p.human {
-            self.world.set_root_offset(lunge.as_vec3());
-            return (lunge, glam::DQuat::IDENTITY);
+            self.world.set_root_offset((lunge + carried).as_vec3());
+            return (lunge + carried, glam::DQuat::IDENTITY);
         }
         let at = |k: f64| self.behaviour.posture(t + dt + k * dt);
         let (before, now, after) = (at(-1.0), at(0.0), at(1.0));
@@ -47,7 +51,7 @@ impl Sim {
             facing: now.facing,
         };
         self.lower.step(p, &cmd, t + dt, dt);
-        let offset = self.lower.waist_offset() + DVec3::Y * lunge.y;
+        let offset = self.lower.waist_offset() + DVec3::Y * lunge.y + carried;
         let rotation = self.lower.trunk_rotation();
         self.world
             .set_root_pose(offset.as_vec3(), rotation.as_quat());

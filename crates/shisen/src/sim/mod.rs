@@ -699,6 +699,7 @@ impl Sim {
         };
         let mut sample = self.sample(&gaze.choice, &gaze.out.eyes.map(|e| e.angles), neck_target);
         sample.reset = reset;
+        sample.torsion = gaze.out.torsion;
         sample.blows = blows;
         self.fixated = (sample.los_error[0].max(sample.los_error[1]) < EYES_ON_TARGET)
             .then(|| gaze.choice.id());
@@ -751,6 +752,7 @@ impl Sim {
             eye_target: *eye_target,
             eye_actual,
             los_error,
+            torsion: 0.0,
             gaze_error,
             neck_target,
             neck_actual: w.joint_angles(Seg::Head),

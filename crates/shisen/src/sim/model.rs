@@ -67,7 +67,8 @@ pub enum Profile {
     #[default]
     Human,
     /// The seed papers' laws as printed, for their figures: no latencies
-    /// (vision, saccades, pursuit, VOR, guard), pursuit gain 1, no onset
+    /// (vision, saccades, pursuit, VOR, guard), pursuit gain 1, an ideal
+    /// translational VOR and no counter-roll, no onset
     /// capture, blinks only in the neutral face at the thesis's rate, and
     /// the thesis's face: its linear lid, Waters' fields unspread, no
     /// wrinkles, lips that part with the jaw; a trunk on a stand that
@@ -83,6 +84,7 @@ impl Params {
         if profile == Profile::Seed {
             self.vision.latency = 0.0;
             self.oculomotor.timing = shisen_gaze::oculomotor::timing::TimingParams::seed();
+            self.oculomotor.otolith = shisen_gaze::oculomotor::otolith::OtolithParams::seed();
             self.behaviour.guard_reaction = 0.0;
             self.attention.onset_gain = 0.0;
             self.neck.human = false;

@@ -34,6 +34,8 @@ pub struct Sample {
     pub eye_actual: [DVec2; 2],
     /// Angle between each eye's line of sight and the gaze point, rad.
     pub los_error: [f64; 2],
+    /// Ocular torsion (counter-roll, H9), rad, both eyes.
+    pub torsion: f64,
     /// Each eye's line of sight minus its direction to the gaze point, as
     /// world (yaw, pitch) differences, rad: the signed gaze error.
     pub gaze_error: [DVec2; 2],

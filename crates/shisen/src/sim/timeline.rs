@@ -277,6 +277,38 @@ pub enum Action {
         #[schemars(range(min = 0.0, max = 86_400.0))]
         hold: f64,
     },
+    /// Carry the VH's trunk (and the head on it) by `offset` along a
+    /// minimum-jerk path over `duration`, then hold it there, as the sled
+    /// of a translational-VOR study carries a person: an imposed
+    /// translation, without turning, e.g. to measure the tVOR from the
+    /// joints. It carries a driven body (`vh.body.pelvis: Driven`, the
+    /// default); a balanced one is moved by `Push`.
+    Carry {
+        /// The displacement `(x, y, z)`, world m; each within +-0.5 m (a
+        /// sled's travel in such studies is a few cm to some tens).
+        #[schemars(with = "[f64; 3]", inner(range(min = -0.5, max = 0.5)))]
+        offset: DVec3,
+        /// Duration of the move, s. 0.05 s (Ramat & Zee 2003's abrupt
+        /// translations took about 200 ms) to a day.
+        #[schemars(range(min = 0.05, max = 86_400.0))]
+        duration: f64,
+    },
+}
+
+/// An imposed translation of the VH's trunk (`Carry`): where it is at a time.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Carry {
+    from: DVec3,
+    by: DVec3,
+    t0: f64,
+    duration: f64,
+}
+
+impl Carry {
+    /// The trunk's imposed offset at `t`, world m.
+    pub fn offset(&self, t: f64) -> DVec3 {
+        self.from + self.by * min_jerk((t - self.t0) / self.duration)
+    }
 }
 
 /// How far behind the contact point a scripted punch at the head or body
@@ -389,6 +421,8 @@ pub struct Timeline {
     pub(super) thrown: Vec<Hand>,
     /// The pushes due in the last `run`.
     pub(super) pushes: Vec<(PushPart, DVec3)>,
+    /// The imposed translation of the trunk, if any.
+    pub(super) carry: Option<Carry>,
 }
 
 impl Timeline {
@@ -409,6 +443,7 @@ impl Timeline {
             shake: None,
             thrown: Vec::new(),
             pushes: Vec::new(),
+            carry: None,
         }
     }
 
@@ -477,6 +512,15 @@ impl Timeline {
                     }
                 }
                 Action::Push { part, impulse } => self.pushes.push((part, impulse)),
+                Action::Carry { offset, duration } => {
+                    let from = self.carry.map_or(DVec3::ZERO, |c| c.offset(t));
+                    self.carry = Some(Carry {
+                        from,
+                        by: offset,
+                        t0: t,
+                        duration,
+                    });
+                }
                 Action::Wave {
                     part,
                     amplitude,

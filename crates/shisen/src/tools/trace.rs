@@ -80,6 +80,7 @@ pub const COLUMNS: &[(&str, Cell)] = &[
     ("eye_r_pitch", num(|s| deg(s.eye_actual[1].y))),
     ("los_err_l", num(|s| deg(s.los_error[0]))),
     ("los_err_r", num(|s| deg(s.los_error[1]))),
+    ("torsion", num(|s| deg(s.torsion))),
     ("neck_yaw_tgt", num(|s| deg(s.neck_target.yaw))),
     ("neck_pitch_tgt", num(|s| deg(s.neck_target.pitch))),
     ("neck_roll_tgt", num(|s| deg(s.neck_target.roll))),

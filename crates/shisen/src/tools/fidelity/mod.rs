@@ -15,6 +15,7 @@ use crate::sim::{BodySpec, Model, Profile, PropShape, Sample, Sim};
 use crate::tools::plot::{Panel, Series, Stroke, chart};
 
 mod blow;
+mod tvor;
 
 /// One row of the report.
 #[derive(Clone, Debug, PartialEq)]
@@ -184,6 +185,7 @@ pub fn battery(model: &Model) -> (Vec<Row>, Curves) {
     microsaccades(model, &mut rows);
     glance(model, &mut rows);
     blow::blows(model, &mut rows);
+    tvor::tvor(model, &mut rows);
     (rows, curves)
 }
 
