@@ -154,3 +154,21 @@ fn study_shards_merge_to_exactly_the_unsharded_rows() {
         "{out}"
     );
 }
+
+#[test]
+fn a_study_with_an_empty_seed_range_says_why_and_writes_nothing() {
+    let d = dir("study_seeds");
+    std::fs::write(d.join("base.ron"), "Scene(duration: 0.1, expect: [Finite])").unwrap();
+    let study = d.join("study.ron");
+    std::fs::write(
+        &study,
+        "Study(scene: \"base.ron\", vary: [(field: \"vh.personality.a_face\", values: [1.0])],\n  seeds: Range(from: 5, to: 1))",
+    )
+    .unwrap();
+    let out = d.join("out.csv");
+    let (code, err) = shisen(&["study", s(&study), "--out", s(&out)]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("study.ron:2:"), "{err}");
+    assert!(err.contains("`to` must be at least `from`"), "{err}");
+    assert!(!out.exists(), "a refused study writes no results file");
+}

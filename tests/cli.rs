@@ -236,6 +236,11 @@ fn overrides_and_arguments_are_checked_before_anything_runs() {
     assert!(err.contains("--force"), "{err}");
     let (code, _, err) = shisen(&["tune", "--from-guess"]);
     assert_eq!(code, 2, "{err}");
+    // Writing gains nothing tuned would copy them unchanged.
+    let (code, _, err) = shisen(&["tune", "--write-gains", "g.ron"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--auto"), "{err}");
+    assert!(!Path::new("g.ron").exists());
     let (code, _, err) = shisen(&["--orbit", "run", &p]);
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("--orbit"), "{err}");

@@ -23,6 +23,11 @@ pub fn tune_cmd(
     if from_guess && !auto {
         anyhow::bail!("--from-guess starts the automatic tuning; give --auto with it");
     }
+    if write_gains.is_some() && !auto {
+        anyhow::bail!(
+            "--write-gains writes the gains --auto tunes; without --auto it would write them unchanged (give --auto, or copy the gains file)"
+        );
+    }
     use shisen::tools::tune;
     let mut plan = Outputs::new().folder("--out", out);
     if let Some(p) = &gains {

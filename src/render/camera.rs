@@ -39,7 +39,9 @@ impl View {
     };
 
     /// Parse `first`, `orbit`, `face` or `orbit:YAW,PITCH,DISTANCE`
-    /// (radians, radians, metres; finite, distance 0.2-10 m).
+    /// (radians, radians, metres: yaw within +-2 pi, pitch within +-1.5
+    /// (86 deg: the camera must not pass over the pole), distance
+    /// 0.2-10 m).
     pub fn parse(s: &str) -> Option<View> {
         match s {
             "first" => Some(View::First),
@@ -53,8 +55,8 @@ impl View {
                     .collect::<Option<_>>()?;
                 match v[..] {
                     [yaw, pitch, distance]
-                        if yaw.is_finite()
-                            && pitch.is_finite()
+                        if yaw.abs() <= std::f32::consts::TAU
+                            && pitch.abs() <= 1.5
                             && (0.2..=10.0).contains(&distance) =>
                     {
                         Some(View::Orbit {
@@ -281,6 +283,8 @@ mod tests {
             "orbit:0.5,0.1,0.1",
             "orbit:0.5,0.1,11",
             "orbit:a,b,c",
+            "orbit:1e30,0,1",
+            "orbit:0,2,1",
             "sideways",
         ] {
             assert_eq!(View::parse(bad), None, "{bad}");

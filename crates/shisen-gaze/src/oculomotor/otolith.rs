@@ -83,8 +83,9 @@ pub struct OtolithParams {
     pub visual_latency: f64,
     /// Time constant over which vision then takes the shortfall up (H8),
     /// s. Default 0.2 (our choice: at most a fifth of it per 40 ms, a
-    /// well-damped loop behind the 100 ms latency). Above 0, at most 10 s;
-    /// with it at least 0.64 x `visual_latency`, the delayed loop is stable.
+    /// well-damped loop behind the 100 ms latency). Above 0, at most 10 s,
+    /// and above `visual_latency` / (pi/2), where the delayed loop turns
+    /// unstable.
     #[schemars(range(max = 10.0), extend("exclusiveMinimum" = 0.0))]
     pub tvor_visual: f64,
     /// Counter-roll held at a steady head tilt, a share of the tilt (H9),
@@ -125,6 +126,20 @@ impl Default for OtolithParams {
 }
 
 impl OtolithParams {
+    /// The cross-field check the ranges cannot make: the delayed visual
+    /// loop (H8) is stable only while `tvor_visual` exceeds `visual_latency`
+    /// over pi/2.
+    pub fn validate(&self) -> Result<(), String> {
+        let least = self.visual_latency / std::f64::consts::FRAC_PI_2;
+        if self.tvor_visual <= least {
+            return Err(format!(
+                "must exceed visual_latency / (pi/2) = {least:.3} s (a shorter time constant behind that latency makes the eyes oscillate), got {}",
+                self.tvor_visual
+            ));
+        }
+        Ok(())
+    }
+
     /// The seed's geometry: the eyes felt where they are (an ideal,
     /// instantaneous translational VOR) and no counter-roll.
     pub fn seed() -> Self {
@@ -261,7 +276,7 @@ pub fn interaural_translation(p: &OculomotorParams, distance: f64, shift: f64) -
         if t >= ONSET && settled.is_none() {
             settled = Some(oc.saccades);
         }
-        if t >= ONSET && t < ONSET + 0.12 && settled == Some(oc.saccades) {
+        if (ONSET..ONSET + 0.12).contains(&t) && settled == Some(oc.saccades) {
             actual.push(((eyes[0].x + eyes[1].x) / 2.0 - before) / DT);
             ideal.push(last_ideal.map_or(0.0, |l| (yaw - l) / DT));
         }

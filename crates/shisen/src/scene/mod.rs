@@ -96,6 +96,31 @@ mod tests {
                 4,
                 "at_most",
             ),
+            (
+                "Scene(\n  duration: 1.0,\n  expect: [\n    GazeShare(target: \"head\", from: 0.0, to: 1.0, at_least: 0.0),\n  ],\n)",
+                4,
+                "share of at least 0",
+            ),
+            (
+                "Scene(\n  duration: 1.0,\n  expect: [\n    GazeShareAtMost(target: \"head\", from: 0.0, to: 1.0, at_most: 1.0),\n  ],\n)",
+                4,
+                "must be under 1",
+            ),
+            (
+                "Scene(\n  duration: 1.0,\n  expect: [\n    Evades(from: 0.0, to: 1.0, at_least: 0),\n  ],\n)",
+                4,
+                "cannot fail",
+            ),
+            (
+                "Scene(\n  duration: 2.0,\n  timeline: [\n    (at: 0.5, do: Punch(hand: Left, target: Head, speed: 5.0)),\n    (at: 0.5, do: Punch(hand: Left, target: Body, speed: 5.0)),\n  ],\n)",
+                5,
+                "one punch at a time",
+            ),
+            (
+                "Scene(\n  duration: 2.0,\n  timeline: [\n    (at: 0.0, do: Move(part: Head, to: (0.0, 1.7, 1.2), duration: 1.0)),\n    (at: 0.5, do: Move(part: Head, to: (0.0, 1.7, 1.5), duration: 0.5)),\n  ],\n)",
+                5,
+                "still moves it",
+            ),
         ] {
             let e = load(text).unwrap_err().to_string();
             assert!(e.starts_with(&format!("t.ron:{line}:")), "{e}");

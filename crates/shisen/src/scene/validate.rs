@@ -52,6 +52,9 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
     if let Err(m) = scene.vh.oculomotor.pursuit.validate() {
         return Err(err("vh.oculomotor.pursuit".into(), m));
     }
+    if let Err(m) = scene.vh.oculomotor.otolith.validate() {
+        return Err(err("vh.oculomotor.otolith.tvor_visual".into(), m));
+    }
     if let Err(m) = scene.vh.neck.validate() {
         return Err(err("vh.neck".into(), m));
     }
@@ -257,14 +260,82 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
                 }
                 false
             }
+            Expect::Evades {
+                at_least, at_most, ..
+            } => *at_least == 0 && at_most.is_none(),
+            Expect::GazeShare { at_least, .. } | Expect::ActionShare { at_least, .. }
+                if *at_least <= 0.0 =>
+            {
+                return Err(err(
+                    format!("expect[{i}].at_least"),
+                    "must be over 0: every window holds a share of at least 0, so as written \
+                     it cannot fail"
+                        .into(),
+                ));
+            }
+            Expect::GazeShareAtMost { at_most, .. } if *at_most >= 1.0 => {
+                return Err(err(
+                    format!("expect[{i}].at_most"),
+                    "must be under 1: no share exceeds the whole window, so as written it \
+                     cannot fail"
+                        .into(),
+                ));
+            }
             _ => false,
         };
         if vacuous {
             return Err(err(
                 format!("expect[{i}].at_least"),
-                "must be at least 1 (or, for Blows, give at_most): as written it cannot fail"
+                "must be at least 1 (or, for Blows and Evades, give at_most): as written it \
+                 cannot fail"
                     .into(),
             ));
+        }
+    }
+    overlaps(scene).map_err(|m| err(m.field, m.message))
+}
+
+/// Timeline entries that ask one body for two things at once: two punches
+/// of one hand at the same moment, or a move of a part that starts while
+/// an earlier move of it is still under way (which would win is an
+/// accident of order).
+fn overlaps(scene: &Scene) -> Result<(), FieldError> {
+    let mut punches: Vec<(usize, f64, crate::sim::timeline::Hand)> = Vec::new();
+    let mut moves: Vec<(usize, f64, f64, &Part)> = Vec::new();
+    for (i, e) in scene.timeline.iter().enumerate() {
+        match &e.action {
+            Action::Punch { hand, .. } => {
+                if let Some((j, ..)) = punches
+                    .iter()
+                    .find(|(_, at, h)| h == hand && (at - e.at).abs() < DT / 2.0)
+                {
+                    return Err(FieldError {
+                        field: format!("timeline[{i}].at"),
+                        message: format!(
+                            "a second {hand:?} punch at {} s, the moment timeline[{j}] throws one: a hand throws one punch at a time",
+                            e.at
+                        ),
+                    });
+                }
+                punches.push((i, e.at, *hand));
+            }
+            Action::Move { part, duration, .. } => {
+                if let Some((j, at, d, _)) = moves
+                    .iter()
+                    .find(|(_, at, d, p)| *p == part && e.at >= *at && e.at < at + d - DT / 2.0)
+                {
+                    return Err(FieldError {
+                        field: format!("timeline[{i}].at"),
+                        message: format!(
+                            "moves {part:?} from {} s while timeline[{j}] still moves it ({at} to {} s): start it when that move ends, or shorten that one",
+                            e.at,
+                            at + d
+                        ),
+                    });
+                }
+                moves.push((i, e.at, *duration, part));
+            }
+            _ => {}
         }
     }
     Ok(())
@@ -283,8 +354,8 @@ pub const MAX_WAVE_SPEED: f64 = 20.0;
 /// longer is a typo, not a bout).
 pub const MAX_DURATION: f64 = 86_400.0;
 
-/// What is wrong with a run length, and where.
-pub struct DurationError {
+/// What is wrong with a field (a run length, a timeline entry), and where.
+pub struct FieldError {
     /// The field.
     pub field: String,
     /// What is wrong.
@@ -296,8 +367,8 @@ pub struct DurationError {
 /// expectation window inside it, and (with `events`, for the file's own
 /// duration) every timeline event too. An override may cut the timeline
 /// short, but not a window it is judged by.
-pub fn check_duration(scene: &Scene, duration: f64, events: bool) -> Result<(), DurationError> {
-    let bad = |field: String, message| Err(DurationError { field, message });
+pub fn check_duration(scene: &Scene, duration: f64, events: bool) -> Result<(), FieldError> {
+    let bad = |field: String, message| Err(FieldError { field, message });
     if !duration.is_finite() || duration < DT {
         return bad(
             "duration".into(),

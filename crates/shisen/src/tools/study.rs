@@ -216,7 +216,20 @@ impl LoadedStudy {
                     ),
                 ));
             }
-            Some(_) => return Err(invalid("seeds".into(), "no seeds".into())),
+            Some(Seeds::Range { from, to }) => {
+                return Err(invalid(
+                    "seeds".into(),
+                    format!(
+                        "Range(from: {from}, to: {to}) holds no seed: `to` must be at least `from`"
+                    ),
+                ));
+            }
+            Some(Seeds::List(_)) => {
+                return Err(invalid(
+                    "seeds".into(),
+                    "an empty list: give at least one seed".into(),
+                ));
+            }
         };
         let total = axes
             .iter()
