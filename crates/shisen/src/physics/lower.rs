@@ -421,6 +421,22 @@ impl LowerBody {
         true
     }
 
+    /// A recovery step (B4): foot `k` swings to `to` on the canvas,
+    /// whatever its place, if no foot is swinging. Returns whether it
+    /// steps.
+    pub fn recovery_step(&mut self, k: usize, to: DVec3, t: f64) -> bool {
+        if self.feet.iter().any(|f| f.swing.is_some()) {
+            return false;
+        }
+        self.feet[k].swing = Some(Swing {
+            from: self.feet[k].at,
+            to: to.with_y(0.0),
+            t0: t,
+        });
+        self.steps += 1;
+        true
+    }
+
     /// Foot `k`'s planned heading (yaw about +Y, 0 along +Z).
     pub fn foot_heading(&self, p: &BodyParams, k: usize) -> f64 {
         foot_yaw(p, k) + self.facing

@@ -110,11 +110,31 @@ impl Sim {
         }
         let at = |k: f64| self.behaviour.posture(t + dt + k * dt);
         let (before, now, after) = (at(-1.0), at(0.0), at(1.0));
+        // B4: a recovery step when the capture point has left the feet.
+        let feet = [0, 1].map(|k| {
+            legs.on_canvas(phys, Part::Foot(k))
+                .then(|| legs.foot_ground(phys, k).0)
+        });
+        let across = DVec3::new(ahead.z as f64, 0.0, -ahead.x as f64).normalize_or_zero();
+        let side = [0, 1].map(|k| {
+            let off = self.lower.foot(k) - self.lower.pelvis();
+            across * (0.5 * off.dot(across))
+        });
+        let planted = (0..2).all(|k| self.lower.planted(k));
+        if let Some((k, to)) = planted
+            .then(|| {
+                self.balance
+                    .recovery(&p.balance, feet, side, p.step_time, t)
+            })
+            .flatten()
+        {
+            self.lower.recovery_step(k, to, t + dt);
+        }
         let planned = now.pelvis + DVec3::new(lunge.x, 0.0, lunge.z);
-        let (pelvis, stepping) = self.balance.steer(&p.balance, planned, waist);
+        let pelvis = self.balance.steer(&p.balance, planned, waist, t);
         let mut cmd = BodyCommand {
             pelvis,
-            pelvis_velocity: stepping.unwrap_or((after.pelvis - before.pelvis) / (2.0 * dt)),
+            pelvis_velocity: (after.pelvis - before.pelvis) / (2.0 * dt),
             waist: [
                 now.waist,
                 (after.waist - before.waist) / (2.0 * dt),
@@ -270,6 +290,24 @@ mod tests {
         assert_eq!(sim.resets, 0);
         let at = sim.pelvis();
         assert!(at.length() < 0.1, "stood where it was: {at}");
+    }
+
+    /// A shove from the front: at 30 N s the ankles and hips hold it in
+    /// place; at 45 N s it takes recovery steps (B4) and stays up (people
+    /// step from about 0.4-0.5 m/s of the centre of mass: Pai & Patton
+    /// 1997, J. Biomech. 30:347; 45 N s on 75 kg is 0.6 m/s).
+    #[test]
+    fn a_harder_shove_is_caught_with_a_step() {
+        for (impulse, steps) in [(30.0, 0..1), (45.0, 1..6)] {
+            let mut sim = pushed(Pelvis::Balanced, DVec3::new(0.0, 0.0, -impulse));
+            run(&mut sim, 5.0);
+            assert_eq!(sim.balance.knockdowns, 0, "{impulse} N s put it down");
+            assert!(
+                steps.contains(&sim.balance.recovery_steps),
+                "{impulse} N s: {} recovery steps",
+                sim.balance.recovery_steps
+            );
+        }
     }
 
     /// A shove no one could stand against puts it down; it lies for a

@@ -9,8 +9,12 @@
 //!   stance legs carry the body's weight, shared by the centre of mass's
 //!   place between the feet: tau_j = (p_j - c) x (s_k M g y^)          (B3)
 //!   (the ankle strategy, and the hips' when the trunk is pushed)
-//! large ones: xi outside the feet's polygon by `step_margin` sends the
-//!   planned pelvis to xi; the footwork law (W2) steps there           (B4)
+//! large ones: xi outside the feet's polygon by `step_margin`: the foot
+//!   that reaches it soonest steps to where xi will be at touchdown,
+//!   xi_T = p + (xi - p) e^(w0 T), p the other foot, T the step's time
+//!   (the linear inverted pendulum's capture step), no farther than
+//!   `max_step`; meanwhile the stance leg no longer pulls the centre of
+//!   mass back                                                          (B4)
 //! too large: the trunk past `fall_tilt`, or the hips lower than
 //!   `fall_height`: the body falls (muscle tone `down_tone`), lies for a
 //!   time that grows with the damage, and rises (B5)
@@ -91,6 +95,12 @@ pub struct Balance {
     pub knockdowns: u32,
     /// Get-ups counted.
     pub get_ups: u32,
+    /// Recovery steps taken (B4), counted.
+    pub recovery_steps: u32,
+    /// The recovery step under way: until when it swings.
+    recovering_until: f64,
+    /// Each ankle's distance from its planned place a tick ago.
+    swing_err: [Option<Vec3>; 2],
     /// The last measurement.
     pub last: BalanceState,
 }
@@ -175,17 +185,61 @@ impl Balance {
         next == Some(Stance::Standing)
     }
 
-    /// How the planned pelvis is sent this tick (B4): within the leash of
-    /// where the body is, or to the capture point when it is outside the
-    /// feet. Returns the pelvis's ground point and velocity.
-    pub fn steer(&self, p: &BalanceParams, planned: DVec3, body: DVec3) -> (DVec3, Option<DVec3>) {
-        let s = &self.last;
-        if self.stance == Stance::Standing && s.outside > p.step_margin {
-            return (s.capture, Some(s.com_velocity.with_y(0.0)));
+    /// How the planned pelvis is sent this tick: within the leash of
+    /// where the body is (the posture is re-planned from the body), and
+    /// held where the body is through a recovery step (B4).
+    pub fn steer(&self, p: &BalanceParams, planned: DVec3, body: DVec3, t: f64) -> DVec3 {
+        if self.recovering(t) {
+            return body.with_y(0.0);
         }
         let d = (planned - body).with_y(0.0);
         let d = d.clamp_length_max(p.leash);
-        (body.with_y(0.0) + d, None)
+        body.with_y(0.0) + d
+    }
+
+    /// Whether a recovery step is under way (B4).
+    pub fn recovering(&self, t: f64) -> bool {
+        t < self.recovering_until
+    }
+
+    /// A recovery step, if one is due (B4): the capture point outside the
+    /// feet by more than `step_margin`, standing, no step under way. Of
+    /// the two feet on the canvas at `feet` (ground points), the one whose
+    /// step is shortest goes to where the capture point will be when it
+    /// lands after `step_time`, the other foot bearing the weight
+    /// meanwhile, shifted to its own side of the body by `side[k]` (so
+    /// the legs do not cross), no farther than `max_step` from where it
+    /// is. Returns the foot and where it lands.
+    pub fn recovery(
+        &mut self,
+        p: &BalanceParams,
+        feet: [Option<DVec3>; 2],
+        side: [DVec3; 2],
+        step_time: f64,
+        t: f64,
+    ) -> Option<(usize, DVec3)> {
+        let s = &self.last;
+        if self.stance != Stance::Standing || self.recovering(t) || s.outside <= p.step_margin {
+            return None;
+        }
+        let w0 = (G / s.com.y.max(0.2)).sqrt();
+        let grow = (w0 * step_time).exp();
+        let target = |k: usize| {
+            let at = feet[k]?.with_y(0.0);
+            let pivot = feet[1 - k].map_or(s.com.with_y(0.0), |f| f.with_y(0.0));
+            let xi = pivot + (s.capture - pivot) * grow + side[k];
+            Some(at + (xi - at).clamp_length_max(p.max_step))
+        };
+        let (k, to) = [0, 1]
+            .into_iter()
+            .filter_map(|k| target(k).map(|to| (k, to)))
+            .min_by(|a, b| {
+                let d = |(k, to): &(usize, DVec3)| (*to - feet[*k].unwrap_or(*to)).length();
+                d(a).total_cmp(&d(b))
+            })?;
+        self.recovering_until = t + step_time;
+        self.recovery_steps += 1;
+        Some((k, to))
     }
 
     /// Muscle tone now: 1 up, `down_tone` falling and down, a ramp back
@@ -215,7 +269,7 @@ impl Balance {
     /// the posture `reference` plans, the stance legs' weight and the
     /// hanging parts' as feed-forward torques, and while rising the push
     /// that lifts the hips (B5).
-    pub fn actuate(&self, world: &mut World, reference: &LowerBody, body: &BodyParams, t: f64) {
+    pub fn actuate(&mut self, world: &mut World, reference: &LowerBody, body: &BodyParams, t: f64) {
         let Some(legs) = world.legs.clone() else {
             return;
         };
@@ -241,7 +295,14 @@ impl Balance {
         let weight = total_mass * G as f32;
         let planned_com = reference.pelvis().as_vec3();
         let v = self.last.com_velocity.as_vec3();
-        let k_com = p.com_stiffness as f32 * weight / com.y.max(0.3);
+        // Through a recovery step the body is let fall toward where the
+        // foot lands: no spring pulls it back (B4).
+        let stiffness = if self.recovering(t) {
+            0.0
+        } else {
+            p.com_stiffness
+        };
+        let k_com = stiffness as f32 * weight / com.y.max(0.3);
         let d_com = p.com_damping as f32 * 2.0 * (k_com * total_mass).sqrt();
         let horizontal = (-(com - planned_com) * k_com - v * d_com).with_y(0.0);
         // ... and the hips held at their planned height.
@@ -266,6 +327,14 @@ impl Balance {
         // feet spun on the canvas when asked to), so the hips' servos keep
         // the pelvis's heading.
         let moment = moment.with_y(0.0);
+        let swing_force = [0, 1].map(|k| {
+            let err = planned[k].ankle.as_vec3() - legs.pivot(&world.phys, Joint::Ankle(k));
+            let last = std::mem::replace(&mut self.swing_err[k], Some(err));
+            (up && !reference.planted(k)).then(|| {
+                let rate = last.map_or(Vec3::ZERO, |l| (err - l) / dt);
+                (err * SWING_K + rate * SWING_D).clamp_length_max(SWING_MAX)
+            })
+        });
         let mut impulses = Vec::with_capacity(8);
         for j in Joint::ALL {
             let parent_des = match j.parent() {
@@ -309,9 +378,18 @@ impl Balance {
                 let sole = legs.foot_ground(&world.phys, k).0.as_vec3();
                 (pivot - sole).cross(support * stance) - moment * stance
             } else {
-                match j {
+                let hang = match j {
                     Joint::Waist => world.gravity_torque_about(Seg::Torso, pivot, Vec3::ZERO),
                     _ => hang_torque(&legs, &world.phys, j.distal(), pivot),
+                };
+                // A swinging foot is carried along its path by a force at
+                // the ankle, given by the hip and knee (J^T F).
+                match (j, swing_force[j.leg().unwrap_or(0)]) {
+                    (Joint::Hip(k) | Joint::Knee(k), Some(f)) => {
+                        let ankle = legs.pivot(&world.phys, Joint::Ankle(k));
+                        hang + (ankle - pivot).cross(f)
+                    }
+                    _ => hang,
                 }
             }
             .clamp_length_max(max);
@@ -365,6 +443,13 @@ const MAX_ANKLE: f32 = 200.0;
 const PELVIS_KP: f32 = 1600.0;
 const PELVIS_KD: f32 = 160.0;
 const MAX_KNEE: f32 = 300.0;
+/// The swinging foot's carrying force toward its planned path (B4):
+/// stiffness N/m, damping N s/m (on the error's rate), and its largest, N
+/// (our calibration: a 12 kg leg tracks a 0.25 s step within about 5 cm,
+/// where the joints' servos alone lagged 15 cm).
+const SWING_K: f32 = 3000.0;
+const SWING_D: f32 = 300.0;
+const SWING_MAX: f32 = 500.0;
 const MAX_HIP: f32 = 300.0;
 
 /// The feet's shares of the weight: by where the centre of mass lies

@@ -42,6 +42,13 @@ pub struct BalanceParams {
     /// McIlroy 1997, Phys. Ther. 77:488). 0-0.3 m.
     #[schemars(range(min = 0.0, max = 0.3))]
     pub step_margin: f64,
+    /// Longest recovery step, m: how far a foot may be sent from where it
+    /// is (B4). Default 0.6 (our choice: young adults recover a
+    /// forward lean of up to about 30 deg with one step, Thelen et al.
+    /// 1997, J. Gerontol. A 52:M8, which takes steps of this order).
+    /// 0.1-1.2 m.
+    #[schemars(range(min = 0.1, max = 1.2))]
+    pub max_step: f64,
     /// How far the planned pelvis may lead the body's, m (the posture is
     /// re-planned from where the body is). Default 0.1. 0.01-1 m.
     #[schemars(range(min = 0.01, max = 1.0))]
@@ -93,6 +100,7 @@ impl Default for BalanceParams {
             com_stiffness: 1.5,
             com_damping: 1.0,
             step_margin: 0.03,
+            max_step: 0.6,
             leash: 0.1,
             fall_tilt_deg: 45.0,
             fall_height: 0.5,
