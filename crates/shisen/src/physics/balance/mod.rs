@@ -329,7 +329,7 @@ impl Balance {
         let moment = moment.with_y(0.0);
         let swing_force = [0, 1].map(|k| {
             let err = planned[k].ankle.as_vec3() - legs.pivot(&world.phys, Joint::Ankle(k));
-            let last = std::mem::replace(&mut self.swing_err[k], Some(err));
+            let last = self.swing_err[k].replace(err);
             (up && !reference.planted(k)).then(|| {
                 let rate = last.map_or(Vec3::ZERO, |l| (err - l) / dt);
                 (err * SWING_K + rate * SWING_D).clamp_length_max(SWING_MAX)
