@@ -172,3 +172,21 @@ fn a_study_with_an_empty_seed_range_says_why_and_writes_nothing() {
     assert!(err.contains("`to` must be at least `from`"), "{err}");
     assert!(!out.exists(), "a refused study writes no results file");
 }
+
+#[test]
+fn a_study_that_varies_a_field_twice_is_refused_at_the_second() {
+    let d = dir("study_twice");
+    std::fs::write(d.join("base.ron"), "Scene(duration: 0.1, expect: [Finite])").unwrap();
+    let study = d.join("study.ron");
+    std::fs::write(
+        &study,
+        "Study(scene: \"base.ron\", vary: [\n  (field: \"vh.personality.a_face\", values: [1.0]),\n  (field: \"vh.personality.a_face\", values: [2.0]),\n])",
+    )
+    .unwrap();
+    let out = d.join("out.csv");
+    let (code, err) = shisen(&["study", s(&study), "--out", s(&out)]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("study.ron:3:"), "{err}");
+    assert!(err.contains("varied twice"), "{err}");
+    assert!(!out.exists(), "a refused study writes no results file");
+}

@@ -37,7 +37,7 @@ pub fn test_cmd(
         plan = plan.input(f);
     }
     if let Some(p) = junit {
-        plan = plan.file("--junit", p);
+        plan = plan.file_as("--junit", p, "a JUnit report (XML)", &["xml"]);
     }
     if let Some(dir) = out {
         if let Some((a, b)) = batch::colliding_outputs(&files) {
@@ -98,7 +98,7 @@ pub fn study_cmd(study: &Path, out: &Path, jobs: usize, shard: Shard) -> Result<
     let mut plan = Outputs::new()
         .input(study)
         .input(Path::new(&s.base.source))
-        .file("--out", out);
+        .file_as("--out", out, "CSV", &["csv"]);
     for f in s.base.files() {
         plan = plan.input(&f);
     }
@@ -136,7 +136,7 @@ pub fn merge_cmd(inputs: &[PathBuf], out: &Path) -> Result<()> {
     if inputs.is_empty() {
         bail!("nothing to merge");
     }
-    let mut plan = Outputs::new().file("--out", out);
+    let mut plan = Outputs::new().file_as("--out", out, "CSV or a JUnit report", &["csv", "xml"]);
     for p in inputs {
         plan = plan.input(p);
     }

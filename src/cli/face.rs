@@ -13,7 +13,7 @@ pub fn face_cmd(c: FaceCommand) -> Result<()> {
             // (a scene's `vh.face.mesh` and `vh.face.landmarks`).
             let landmarks = out.with_extension("landmarks.ron");
             Outputs::new()
-                .file("--out", &out)
+                .file_as("--out", &out, "a binary glTF head", &["glb"])
                 .file("--out (landmarks)", &landmarks)
                 .check()?;
             let face = Face::new(MeshParams { rows }, FaceParams::default_params());
@@ -36,11 +36,16 @@ pub fn face_cmd(c: FaceCommand) -> Result<()> {
             cell,
             basic,
         } => {
-            Outputs::new().file("--out", &out).check()?;
+            Outputs::new()
+                .file_as("--out", &out, "a PNG picture", &["png"])
+                .check()?;
             sheet(&out, rows, cell, basic)?
         }
         FaceCommand::Calibrate { csv, out } => {
-            Outputs::new().input(&csv).file("--out", &out).check()?;
+            Outputs::new()
+                .input(&csv)
+                .file_as("--out", &out, "a muscle database (RON)", &["ron"])
+                .check()?;
             let params = calibrate::calibrate_file(&FaceParams::default_params(), &csv)?;
             write_whole(&out, params.to_ron().as_bytes())
                 .with_context(|| format!("cannot write {}", out.display()))?;

@@ -133,10 +133,10 @@ fn main() -> ExitCode {
                 plan = plan.input(p);
             }
             if let Some(p) = &opts.stats {
-                plan = plan.file("--stats", p);
+                plan = plan.file_as("--stats", p, "JSON", &["json"]);
             }
             if let Some(p) = &opts.screenshot {
-                plan = plan.file("--screenshot", p);
+                plan = plan.file_as("--screenshot", p, "a PNG picture", &["png"]);
             }
             if let Err(e) = plan.check() {
                 eprintln!("error: {e}");
@@ -240,7 +240,7 @@ fn main() -> ExitCode {
         Some(Command::Plot { trace, out, size }) => report(
             shisen::tools::output::Outputs::new()
                 .input(&trace)
-                .file("--out", &out)
+                .file_as("--out", &out, "a PNG picture", &["png"])
                 .check()
                 .map_err(anyhow::Error::from)
                 .and_then(|()| shisen::tools::plot::plot_trace(&trace, &out, size)),
@@ -271,7 +271,7 @@ fn main() -> ExitCode {
 /// `shisen export-mjcf`.
 fn export_mjcf(out: &std::path::Path) -> Result<()> {
     shisen::tools::output::Outputs::new()
-        .file("--out", out)
+        .file_as("--out", out, "an MJCF model (XML)", &["xml"])
         .check()?;
     let xml =
         shisen::tools::mjcf::mjcf(&shisen::physics::body::BodyPlan::default(), shisen::sim::DT);

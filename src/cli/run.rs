@@ -71,7 +71,12 @@ pub fn render(
         };
         anyhow::bail!("{flag} {end}: after the scene's end ({duration} s)");
     }
-    let mut plan = Outputs::new().file("--out", out);
+    let mut plan = Outputs::new().file_as(
+        "--out",
+        out,
+        "a PNG picture (an animated one with --until)",
+        &["png", "apng"],
+    );
     if scene != "default" {
         plan = plan.input(Path::new(scene));
     }
@@ -232,10 +237,10 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
         plan = plan.input(&f);
     }
     if let Some(t) = &a.trace {
-        plan = plan.file("--trace", t);
+        plan = plan.file_as("--trace", t, "CSV", &["csv"]);
     }
     if let Some(p) = &a.plot {
-        plan = plan.file("--plot", p);
+        plan = plan.file_as("--plot", p, "a PNG picture", &["png"]);
     }
     plan.check()?;
     if let Some(s) = a.seed {

@@ -34,7 +34,7 @@ pub fn tune_cmd(
         plan = plan.input(p);
     }
     if let Some(p) = &write_gains {
-        plan = plan.file("--write-gains", p);
+        plan = plan.file_as("--write-gains", p, "a gains file (RON)", &["ron"]);
     }
     plan.check()?;
     let mut g = match &gains {

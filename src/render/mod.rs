@@ -115,9 +115,9 @@ impl Headless {
 /// Write an image as PNG, whole or not at all
 /// ([`shisen::tools::output::write_whole`]).
 pub fn write_png(image: &image::RgbaImage, path: &Path) -> Result<(), RenderError> {
-    let fail = |source| RenderError::Write {
+    let fail = |error| RenderError::Write {
         path: path.display().to_string(),
-        source,
+        error,
     };
     let mut bytes = std::io::Cursor::new(Vec::new());
     image

@@ -112,6 +112,16 @@ pub fn parse_csv(text: &str, file: &Path) -> Result<SubjectData, LoadError> {
             entry.entry(m).or_default().push(v);
         }
     }
+    // A header and no values would calibrate nothing: the database would
+    // come out as the built-in one, under the user's name.
+    if out.values().all(|e| e.values().all(Vec::is_empty)) {
+        return Err(err(
+            hline + 1,
+            1,
+            "-",
+            "no subject values after the header: nothing to calibrate from".into(),
+        ));
+    }
     Ok(out)
 }
 
@@ -282,6 +292,9 @@ mod tests {
             ("expression,subject,Jaw\nJoy,a,1\n", 2, 1, "expression"),
             ("# c\nexpression,subject,Jaw\n\nAnger,a,x\n", 4, 3, "Jaw"),
             ("expression,Jaw\nAnger,1,2\n", 2, 1, "-"),
+            // a header alone, or rows without a value: nothing to calibrate
+            ("expression,subject,Jaw\n", 2, 1, "-"),
+            ("expression,subject,Jaw\nAnger,a,\n", 2, 1, "-"),
         ];
         for (text, line, col, field) in bad {
             match parse_csv(text, Path::new("c.csv")).unwrap_err() {

@@ -235,6 +235,16 @@ pub fn head_from_parts(
     lm: &LandmarkFile,
 ) -> Result<HeadMesh, FaceError> {
     let positions: Vec<Vec3> = positions.into_iter().map(|p| p * lm.scale).collect();
+    if triangles.is_empty() {
+        return Err(FaceError::Import(
+            "an empty mesh: no triangles to make a head of".into(),
+        ));
+    }
+    if let Some((i, p)) = positions.iter().enumerate().find(|(_, p)| !p.is_finite()) {
+        return Err(FaceError::Import(format!(
+            "vertex {i} is not a finite point ({p})"
+        )));
+    }
     if let Some(t) = triangles
         .iter()
         .find(|t| t.iter().any(|&i| i as usize >= positions.len()))
@@ -244,6 +254,7 @@ pub fn head_from_parts(
         )));
     }
     let landmarks = lm.resolve(&positions)?;
+    check_landmarks(&landmarks)?;
     Ok(HeadMesh {
         normals: compute_normals(&positions, &triangles),
         lid_zone: lid_zone(&positions, landmarks.eye_centre),
@@ -255,6 +266,38 @@ pub fn head_from_parts(
         landmarks,
         rims: Rims::default(),
     })
+}
+
+/// Landmarks that cannot be a face's: gathered at a point, or the eye on
+/// the mid-plane (the two eyes would be one). A head's landmarks span
+/// some 15-25 cm from the forehead to the chin and the ear; its eye
+/// centres are about 6 cm apart.
+fn check_landmarks(l: &Landmarks) -> Result<(), FaceError> {
+    let points = [
+        l.forehead_mid,
+        l.nasion,
+        l.nose_tip,
+        l.eye_centre,
+        l.mouth_centre,
+        l.chin,
+        l.jaw_pivot,
+        l.ear_lobe,
+    ];
+    let lo = points.iter().copied().fold(Vec3::INFINITY, Vec3::min);
+    let hi = points.iter().copied().fold(Vec3::NEG_INFINITY, Vec3::max);
+    let span = (hi - lo).length();
+    if span < 0.08 {
+        return Err(FaceError::Import(format!(
+            "the landmarks span {span:.3} m (after `scale`): a head's span 0.15-0.25 m from forehead to chin and ear"
+        )));
+    }
+    if l.eye_centre.x.abs() < 0.01 {
+        return Err(FaceError::Import(format!(
+            "the eye centre is {:.3} m from the mid-plane: the eyes would meet (a head's are about 0.03 m each side)",
+            l.eye_centre.x.abs()
+        )));
+    }
+    Ok(())
 }
 
 fn import_err(file: &Path, e: impl std::fmt::Display) -> FaceError {
@@ -421,6 +464,28 @@ mod tests {
         let h = mesh_from_glb(&export_glb(&f), &lm, Path::new("head.glb")).unwrap();
         assert_eq!(h.positions, f.mesh.positions);
         assert_eq!(h.triangles, f.mesh.triangles);
+    }
+
+    /// A mesh with no triangles, a vertex at NaN, or landmarks gathered at
+    /// one point make no head: refused, not a face of floating eyes.
+    #[test]
+    fn meshes_and_landmarks_that_make_no_head_are_refused() {
+        let f = face(24);
+        let lm = LandmarkFile::from_landmarks(&f.mesh.landmarks);
+        let m = &f.mesh;
+        let e = head_from_parts(m.positions.clone(), Vec::new(), &lm).unwrap_err();
+        assert!(e.to_string().contains("empty mesh"), "{e}");
+        let mut nan = m.positions.clone();
+        nan[3].y = f32::NAN;
+        let e = head_from_parts(nan, m.triangles.clone(), &lm).unwrap_err();
+        assert!(e.to_string().contains("vertex 3"), "{e}");
+        let mut one = lm.clone();
+        for v in one.landmarks.values_mut() {
+            *v = LandmarkRef::Vertex(0);
+        }
+        let e = head_from_parts(m.positions.clone(), m.triangles.clone(), &one).unwrap_err();
+        assert!(e.to_string().contains("span"), "{e}");
+        assert!(head_from_parts(m.positions.clone(), m.triangles.clone(), &lm).is_ok());
     }
 
     #[test]

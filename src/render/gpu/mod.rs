@@ -35,9 +35,10 @@ pub enum RenderError {
          lavapipe: apt-get install mesa-vulkan-drivers libvulkan1)"
     )]
     NoAdapter(String),
-    /// The adapter refused to create a device.
+    /// The adapter refused to create a device (its error in the message,
+    /// not as a cause: a report of the chain says it once).
     #[error("cannot create a device: {0}")]
-    Device(#[from] wgpu::RequestDeviceError),
+    Device(wgpu::RequestDeviceError),
     /// Reading the picture back failed.
     #[error("reading the picture back failed: {0}")]
     Readback(String),
@@ -45,13 +46,19 @@ pub enum RenderError {
     #[error("nothing rendered yet")]
     NothingRendered,
     /// Writing the PNG failed.
-    #[error("cannot write {path}: {source}")]
+    #[error("cannot write {path}: {error}")]
     Write {
         /// Output path.
         path: String,
-        /// Cause.
-        source: image::ImageError,
+        /// What went wrong.
+        error: image::ImageError,
     },
+}
+
+impl From<wgpu::RequestDeviceError> for RenderError {
+    fn from(e: wgpu::RequestDeviceError) -> Self {
+        RenderError::Device(e)
+    }
 }
 
 /// Format of the resolved colour texture (PNG bytes are its raw contents).

@@ -27,7 +27,7 @@ use std::collections::BTreeMap;
 pub enum FaceError {
     /// The RON parameter file did not parse, or a value in it is out of
     /// range or inconsistent (file, line, column and field included).
-    #[error("{0}")]
+    #[error(transparent)]
     Parse(#[from] shisen_gaze::util::ron::LoadError),
     /// A parameter value of a database not read from a file (a
     /// calibration's result, parameters built in code) is out of range or

@@ -116,11 +116,6 @@ mod tests {
                 5,
                 "one punch at a time",
             ),
-            (
-                "Scene(\n  duration: 2.0,\n  timeline: [\n    (at: 0.0, do: Move(part: Head, to: (0.0, 1.7, 1.2), duration: 1.0)),\n    (at: 0.5, do: Move(part: Head, to: (0.0, 1.7, 1.5), duration: 0.5)),\n  ],\n)",
-                5,
-                "still moves it",
-            ),
         ] {
             let e = load(text).unwrap_err().to_string();
             assert!(e.starts_with(&format!("t.ron:{line}:")), "{e}");

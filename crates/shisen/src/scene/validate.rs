@@ -295,47 +295,28 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
     overlaps(scene).map_err(|m| err(m.field, m.message))
 }
 
-/// Timeline entries that ask one body for two things at once: two punches
-/// of one hand at the same moment, or a move of a part that starts while
-/// an earlier move of it is still under way (which would win is an
-/// accident of order).
+/// Timeline entries that ask one hand for two things at once: two punches
+/// at the same moment (which would be thrown is an accident of order). A
+/// move of a part while an earlier one still moves it is allowed: it
+/// starts from where the part is, which is how live input steers a glove
+/// (recorded sessions are full of them).
 fn overlaps(scene: &Scene) -> Result<(), FieldError> {
     let mut punches: Vec<(usize, f64, crate::sim::timeline::Hand)> = Vec::new();
-    let mut moves: Vec<(usize, f64, f64, &Part)> = Vec::new();
     for (i, e) in scene.timeline.iter().enumerate() {
-        match &e.action {
-            Action::Punch { hand, .. } => {
-                if let Some((j, ..)) = punches
-                    .iter()
-                    .find(|(_, at, h)| h == hand && (at - e.at).abs() < DT / 2.0)
-                {
-                    return Err(FieldError {
-                        field: format!("timeline[{i}].at"),
-                        message: format!(
-                            "a second {hand:?} punch at {} s, the moment timeline[{j}] throws one: a hand throws one punch at a time",
-                            e.at
-                        ),
-                    });
-                }
-                punches.push((i, e.at, *hand));
+        if let Action::Punch { hand, .. } = &e.action {
+            if let Some((j, ..)) = punches
+                .iter()
+                .find(|(_, at, h)| h == hand && (at - e.at).abs() < DT / 2.0)
+            {
+                return Err(FieldError {
+                    field: format!("timeline[{i}].at"),
+                    message: format!(
+                        "a second {hand:?} punch at {} s, the moment timeline[{j}] throws one: a hand throws one punch at a time",
+                        e.at
+                    ),
+                });
             }
-            Action::Move { part, duration, .. } => {
-                if let Some((j, at, d, _)) = moves
-                    .iter()
-                    .find(|(_, at, d, p)| *p == part && e.at >= *at && e.at < at + d - DT / 2.0)
-                {
-                    return Err(FieldError {
-                        field: format!("timeline[{i}].at"),
-                        message: format!(
-                            "moves {part:?} from {} s while timeline[{j}] still moves it ({at} to {} s): start it when that move ends, or shorten that one",
-                            e.at,
-                            at + d
-                        ),
-                    });
-                }
-                moves.push((i, e.at, *duration, part));
-            }
-            _ => {}
+            punches.push((i, e.at, *hand));
         }
     }
     Ok(())

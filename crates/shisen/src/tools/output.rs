@@ -30,6 +30,9 @@ pub struct Outputs {
     inputs: Vec<PathBuf>,
     files: Vec<(String, PathBuf)>,
     folders: Vec<(String, PathBuf)>,
+    /// Files whose extension must say what they hold: flag, path, what
+    /// they hold, the extensions that say so.
+    kinds: Vec<(String, PathBuf, &'static str, &'static [&'static str])>,
 }
 
 impl Outputs {
@@ -51,6 +54,24 @@ impl Outputs {
             self.files.push((flag.to_string(), path.to_path_buf()));
         }
         self
+    }
+
+    /// A file the command writes holding `what` (`CSV`, `a PNG picture`):
+    /// as [`Outputs::file`], and its extension, if it has one, must be
+    /// one of `extensions` (a file named `results.png` holding CSV would
+    /// mislead every program that opens it).
+    pub fn file_as(
+        mut self,
+        flag: &str,
+        path: &Path,
+        what: &'static str,
+        extensions: &'static [&'static str],
+    ) -> Outputs {
+        if path != Path::new("-") {
+            self.kinds
+                .push((flag.to_string(), path.to_path_buf(), what, extensions));
+        }
+        self.file(flag, path)
     }
 
     /// A folder the command writes into (created by [`Outputs::check`]).
@@ -116,6 +137,22 @@ impl Outputs {
                 ));
             }
             seen.push((flag, id));
+        }
+        for (flag, file, what, extensions) in &self.kinds {
+            let Some(ext) = file.extension().map(|e| e.to_string_lossy().to_lowercase()) else {
+                continue;
+            };
+            if !extensions.contains(&ext.as_str()) {
+                let want: Vec<String> = extensions.iter().map(|e| format!(".{e}")).collect();
+                return Err(err(
+                    flag,
+                    file,
+                    format!(
+                        "is named .{ext} but holds {what}; name it {}",
+                        want.join(" or ")
+                    ),
+                ));
+            }
         }
         Ok(())
     }
@@ -185,6 +222,19 @@ mod tests {
         assert!(e.contains("also the file of --trace"), "{e}");
         let e = check(Outputs::new().file("--out", &dir.path().join("no/a.png"))).unwrap_err();
         assert!(e.contains("does not exist"), "{e}");
+        let e = check(Outputs::new().file("--out", dir.path())).unwrap_err();
+        assert!(e.contains("folder"), "{e}");
+        let e = check(Outputs::new().file_as("--out", &dir.path().join("r.png"), "CSV", &["csv"]))
+            .unwrap_err();
+        assert!(e.contains("holds CSV; name it .csv"), "{e}");
+        assert!(
+            check(Outputs::new().file_as("--out", &dir.path().join("r.CSV"), "CSV", &["csv"]))
+                .is_ok()
+        );
+        assert!(
+            check(Outputs::new().file_as("--out", &dir.path().join("results"), "CSV", &["csv"]))
+                .is_ok()
+        );
         let e = check(Outputs::new().file("--out", dir.path())).unwrap_err();
         assert!(e.contains("is a folder"), "{e}");
         assert!(

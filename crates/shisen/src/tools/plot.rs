@@ -256,14 +256,33 @@ impl TraceTable {
     }
 }
 
+/// A trace's time column is simulation time: finite, within a day (the
+/// longest run), rising from row to row. The error names the row's line.
+fn check_time(t: &[f64], file: &str) -> Result<()> {
+    let mut last = f64::NEG_INFINITY;
+    for (i, &v) in t.iter().enumerate() {
+        let line = i + 2; // the header is line 1
+        if !v.is_finite() || !(0.0..=86_400.0).contains(&v) {
+            anyhow::bail!("{file}:{line}: t = {v}: a trace's time is 0 to 86400 s");
+        }
+        if v <= last {
+            anyhow::bail!("{file}:{line}: t = {v} after {last}: a trace's time must rise");
+        }
+        last = v;
+    }
+    Ok(())
+}
+
 /// Plot a trace: gaze, eye and head yaw and pitch against time, the
 /// line-of-sight error, and the gaze-target switches marked.
 pub fn plot_trace(trace: &Path, out: &Path, size: (u32, u32)) -> Result<()> {
     // A trace is data, up to an hour of ticks: 2 GiB at most.
     let text =
         shisen_gaze::util::ron::read_text_up_to(trace, 2 << 30).context("cannot read the trace")?;
-    let tt = TraceTable::parse(&text, &trace.display().to_string())?;
+    let file = trace.display().to_string();
+    let tt = TraceTable::parse(&text, &file)?;
     let t = tt.column("t")?;
+    check_time(&t, &file)?;
     let zip = |a: &[f64]| t.iter().copied().zip(a.iter().copied()).collect::<Vec<_>>();
     let eye_y = tt.column("eye_l_yaw")?;
     let eye_p = tt.column("eye_l_pitch")?;
@@ -332,6 +351,20 @@ mod tests {
             .unwrap()
             .to_string();
         assert!(e.starts_with("x.csv:3:"), "{e}");
+    }
+
+    #[test]
+    fn a_trace_whose_time_is_not_time_is_refused_at_its_line() {
+        for (t, line) in [
+            (vec![0.001, f64::NAN], 3),
+            (vec![0.002, 0.001], 3),
+            (vec![1e300], 2),
+            (vec![-1.0], 2),
+        ] {
+            let e = check_time(&t, "t.csv").unwrap_err().to_string();
+            assert!(e.starts_with(&format!("t.csv:{line}:")), "{e}");
+        }
+        assert!(check_time(&[0.001, 0.002], "t.csv").is_ok());
     }
 
     #[test]

@@ -185,6 +185,12 @@ impl LoadedStudy {
                     format!("must be finite, got {bad}"),
                 ));
             }
+            if let Some(j) = study.vary[..i].iter().position(|w| w.field == v.field) {
+                return Err(invalid(
+                    format!("vary[{i}].field"),
+                    format!("`{}` is varied twice (vary[{j}] varies it too)", v.field),
+                ));
+            }
             if v.field.starts_with("vh.face") || v.field == "seed" {
                 return Err(invalid(
                     format!("vary[{i}].field"),

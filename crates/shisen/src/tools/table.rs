@@ -19,13 +19,14 @@ use std::sync::Mutex;
 /// Errors of results files.
 #[derive(Debug, thiserror::Error)]
 pub enum TableError {
-    /// Reading or writing failed.
-    #[error("{file}: {source}")]
+    /// Reading or writing failed. The OS error is part of the message,
+    /// not a cause behind it (so a report of the chain says it once).
+    #[error("{file}: {error}")]
     Io {
         /// The file.
         file: String,
         /// The OS error.
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// The file holds another kind of results, or was made with other
     /// settings: resuming or merging would mix them.
@@ -62,9 +63,9 @@ fn read(path: &Path) -> Result<String, TableError> {
 }
 
 fn io(file: &Path) -> impl FnOnce(std::io::Error) -> TableError + '_ {
-    move |source| TableError::Io {
+    move |error| TableError::Io {
         file: file.display().to_string(),
-        source,
+        error,
     }
 }
 
@@ -295,7 +296,7 @@ pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<usize, TableError> {
     if out.exists() {
         return Err(TableError::Io {
             file: out.display().to_string(),
-            source: std::io::Error::new(
+            error: std::io::Error::new(
                 std::io::ErrorKind::AlreadyExists,
                 "exists already; merge writes a new file",
             ),

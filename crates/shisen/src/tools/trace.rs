@@ -1,6 +1,6 @@
 //! The trace: CSV, one row per control tick (or every Nth), angles in
 //! degrees. Header and row come from one column table so they cannot drift
-//! apart; the README documents each column. Rows are written by the `csv`
+//! apart; docs/headless.md documents each column. Rows are written by the `csv`
 //! crate, so a cell holding a comma or a quote (a body named `a,b`) is
 //! quoted and the file stays readable; ordinary cells are written as they
 //! are.
