@@ -155,38 +155,36 @@ fn study_shards_merge_to_exactly_the_unsharded_rows() {
     );
 }
 
-#[test]
-fn a_study_with_an_empty_seed_range_says_why_and_writes_nothing() {
-    let d = dir("study_seeds");
+/// A study of `text` beside a tiny base scene, which must be refused:
+/// exit 2, and nothing written. Returns the error.
+fn refused_study(name: &str, text: &str) -> String {
+    let d = dir(name);
     std::fs::write(d.join("base.ron"), "Scene(duration: 0.1, expect: [Finite])").unwrap();
     let study = d.join("study.ron");
-    std::fs::write(
-        &study,
-        "Study(scene: \"base.ron\", vary: [(field: \"vh.personality.a_face\", values: [1.0])],\n  seeds: Range(from: 5, to: 1))",
-    )
-    .unwrap();
+    std::fs::write(&study, text).unwrap();
     let out = d.join("out.csv");
     let (code, err) = shisen(&["study", s(&study), "--out", s(&out)]);
     assert_eq!(code, 2, "{err}");
+    assert!(!out.exists(), "a refused study writes no results file");
+    err
+}
+
+#[test]
+fn a_study_with_an_empty_seed_range_says_why_and_writes_nothing() {
+    let err = refused_study(
+        "study_seeds",
+        "Study(scene: \"base.ron\", vary: [(field: \"vh.personality.a_face\", values: [1.0])],\n  seeds: Range(from: 5, to: 1))",
+    );
     assert!(err.contains("study.ron:2:"), "{err}");
     assert!(err.contains("`to` must be at least `from`"), "{err}");
-    assert!(!out.exists(), "a refused study writes no results file");
 }
 
 #[test]
 fn a_study_that_varies_a_field_twice_is_refused_at_the_second() {
-    let d = dir("study_twice");
-    std::fs::write(d.join("base.ron"), "Scene(duration: 0.1, expect: [Finite])").unwrap();
-    let study = d.join("study.ron");
-    std::fs::write(
-        &study,
+    let err = refused_study(
+        "study_twice",
         "Study(scene: \"base.ron\", vary: [\n  (field: \"vh.personality.a_face\", values: [1.0]),\n  (field: \"vh.personality.a_face\", values: [2.0]),\n])",
-    )
-    .unwrap();
-    let out = d.join("out.csv");
-    let (code, err) = shisen(&["study", s(&study), "--out", s(&out)]);
-    assert_eq!(code, 2, "{err}");
+    );
     assert!(err.contains("study.ron:3:"), "{err}");
     assert!(err.contains("varied twice"), "{err}");
-    assert!(!out.exists(), "a refused study writes no results file");
 }

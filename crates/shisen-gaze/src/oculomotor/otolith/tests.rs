@@ -1,7 +1,87 @@
 use super::*;
-use crate::oculomotor::OculomotorParams;
+use crate::oculomotor::head::Amount;
+use crate::oculomotor::{GazeInput, GazeShiftLaw, Oculomotor, OculomotorParams};
+use crate::target::{BodyId, TargetId};
+use crate::util::math::{JointAngles, min_jerk, yaw_pitch_of};
+use glam::DVec2;
+use rand::SeedableRng;
+use rand::rngs::StdRng;
 
 const DT: f64 = 0.001;
+
+/// The translational VOR measured as Ramat & Zee 2003 did, with a perfect
+/// plant (each eye command taken as the eye's new angle).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct TvorResponse {
+    /// Delay of the eyes' velocity behind the ideal one, s (the lag of
+    /// best fit).
+    latency: f64,
+    /// Eye velocity over the ideal one at that lag (least squares).
+    gain: f64,
+    /// The eyes' peak conjugate yaw velocity, rad/s.
+    peak_rate: f64,
+}
+
+/// Ramat & Zee's paradigm: the head, facing +Z, is carried interaurally
+/// (toward the VH's left, +X) by `shift` m along a 200 ms minimum-jerk path,
+/// without turning, while the gaze laws `p` fixate a point `distance` m
+/// straight ahead; measured from the onset to the head's peak velocity
+/// (100 ms, where Ramat & Zee took the gain) and the reflex's latency
+/// after it, before vision adds to the reflex. The eyes' ideal velocity is
+/// the rate of the target's direction from the moving cyclopean eye.
+fn interaural_translation(p: &OculomotorParams, distance: f64, shift: f64) -> TvorResponse {
+    const ONSET: f64 = 0.5;
+    let head0 = DVec3::new(0.0, 1.6, 0.0);
+    let mut rng = StdRng::seed_from_u64(3);
+    let mut oc = Oculomotor::new(p, &mut rng);
+    let target = head0 + DVec3::new(0.0, 0.0, distance);
+    let mut eyes = [DVec2::ZERO; 2];
+    let (mut actual, mut ideal) = (Vec::new(), Vec::new());
+    let (mut last_ideal, mut settled) = (None, None);
+    for k in 0..1000 {
+        let t = f64::from(k) * DT;
+        let head = head0 + DVec3::X * shift * min_jerk((t - ONSET) / 0.2);
+        let half = 0.5 * p.pursuit.interpupillary;
+        let input = GazeInput {
+            point: target,
+            target: TargetId::body(BodyId::new(1)),
+            amount: Amount {
+                value: 1.0,
+                least: 1.5,
+                most: 3.0,
+            },
+            top_down: false,
+            head_pos: head,
+            head_rot: DQuat::IDENTITY,
+            head_angvel: DVec3::ZERO,
+            torso_rot: DQuat::IDENTITY,
+            eye_pos: [1.0, -1.0].map(|s| head + DVec3::X * s * half),
+            eye_angles: eyes,
+            neck_angles: JointAngles::default(),
+            visible: [true, true],
+            style: GazeShiftLaw::Reflex,
+            neck_override: None,
+        };
+        let before = (eyes[0].x + eyes[1].x) / 2.0;
+        let out = oc.step(p, &input, t, DT, &mut rng);
+        eyes = out.eyes.map(|e| e.angles);
+        let (yaw, _) = yaw_pitch_of(target - head);
+        if t >= ONSET && settled.is_none() {
+            settled = Some(oc.saccades);
+        }
+        if (ONSET..ONSET + 0.12).contains(&t) && settled == Some(oc.saccades) {
+            actual.push(((eyes[0].x + eyes[1].x) / 2.0 - before) / DT);
+            ideal.push(last_ideal.map_or(0.0, |l| (yaw - l) / DT));
+        }
+        last_ideal = Some(yaw);
+    }
+    let (latency, gain) = lag_fit(&actual, &ideal, DT);
+    TvorResponse {
+        latency,
+        gain,
+        peak_rate: actual.iter().fold(0.0, |m, v| m.max(v.abs())),
+    }
+}
 
 /// The human oculomotor parameters with the idle gaze's microsaccades and
 /// drift off (they would add noise to the velocities measured).

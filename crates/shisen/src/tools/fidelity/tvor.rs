@@ -9,8 +9,11 @@ use shisen_gaze::oculomotor::otolith::lag_fit;
 use shisen_gaze::util::math::yaw_pitch_of;
 
 use super::{Row, at, hold_head, median, point, run};
+use std::path::Path;
+
 use crate::physics::body::BodyPlan;
-use crate::sim::timeline::{Action, Hand, Part, PunchTarget};
+use crate::scene::format::Scene;
+use crate::sim::timeline::Action;
 use crate::sim::{Model, Sample, Sim};
 
 const RAMAT_ZEE: &str = "Ramat & Zee 2003, J. Neurophysiol. 90:887 (latency 19 +- 5 ms at 15 cm, 20 +- 12 ms at 30 cm; velocity gain 0.52 and 0.62)";
@@ -113,42 +116,21 @@ pub(super) fn tvor(model: &Model, rows: &mut Vec<Row>) {
     });
 }
 
-/// Six 5 m/s jabs thrown stepping in from 1.5 m (scenes/slip_jabs.ron's):
-/// the median and largest line-of-sight error (deg) over the ticks the VH
-/// evades.
+/// The six-jab scene the slip row replays (one home for its timeline).
+const SLIP_JABS: &str = include_str!("../../../../../scenes/slip_jabs.ron");
+
+/// Six 5 m/s jabs thrown stepping in from 1.5 m (scenes/slip_jabs.ron's
+/// timeline and range, on this model's VH): the median and largest
+/// line-of-sight error (deg) over the ticks the VH evades.
 fn slips(model: &Model) -> (f64, f64) {
+    let scene = Scene::parse(SLIP_JABS, Path::new("scenes/slip_jabs.ron"))
+        .expect("the shipped slip_jabs scene parses");
     let mut m = model.clone();
-    m.params.behaviour.range = 1.5;
-    let head = |z: f64| Action::Move {
-        part: Part::Head,
-        to: DVec3::new(0.0, 1.685, z),
-        duration: 0.3,
-    };
-    let mut tl = vec![at(
-        0.0,
-        Action::Move {
-            part: Part::Head,
-            to: DVec3::new(0.0, 1.685, 1.5),
-            duration: 0.6,
-        },
-    )];
-    for (k, t) in [1.5, 2.8, 3.8, 5.4, 6.5, 7.9].into_iter().enumerate() {
-        let hand = if k % 2 == 0 { Hand::Left } else { Hand::Right };
-        tl.push(at(
-            t,
-            Action::Punch {
-                hand,
-                target: PunchTarget::Head,
-                speed: 5.0,
-                through: None,
-            },
-        ));
-        tl.push(at(t, head(1.25)));
-        tl.push(at(t + 0.5, head(1.5)));
-    }
+    m.params.behaviour.range = scene.vh.behaviour.range;
+    let tl = scene.timeline;
     let mut sim = Sim::new(m, &tl);
     let mut errs = Vec::new();
-    while sim.time() < 9.5 - 1e-9 {
+    while sim.time() < scene.duration - 1e-9 {
         let s = sim.step();
         if matches!(
             s.action,
