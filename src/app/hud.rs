@@ -262,7 +262,16 @@ pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session, sim: &shisen::sim::Sim
             c,
         );
     }
-    if sim.last().is_some_and(|l| l.staggered) {
+    if let Some(n) = sim.count() {
+        // The referee's count over a knockdown.
+        p.text(
+            rect.center() + vec2(0.0, h * 0.05),
+            Align2::CENTER_CENTER,
+            format!("DOWN  {n}"),
+            FontId::proportional(big.size * 1.5),
+            GOLD,
+        );
+    } else if sim.last().is_some_and(|l| l.staggered) {
         p.text(
             rect.center() + vec2(0.0, h * 0.05),
             Align2::CENTER_CENTER,
@@ -554,6 +563,12 @@ fn stats_table(ui: &mut egui::Ui, c: &Card) {
                 c.vh.missed.to_string(),
             );
             row(ui, "evasions", "-".to_string(), c.vh.evasions.to_string());
+            row(
+                ui,
+                "knockdowns",
+                c.you.knockdowns.to_string(),
+                c.vh.knockdowns.to_string(),
+            );
         });
 }
 

@@ -223,6 +223,10 @@ pub enum Command {
         /// Seed of the opponent and the VH.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// The VH's whole body in the physics (`vh.body.pelvis: Balanced`):
+        /// blows can stagger and knock it down.
+        #[arg(long)]
+        balanced: bool,
         /// Allow more than 600 simulated minutes.
         #[arg(long)]
         force: bool,

@@ -235,8 +235,9 @@ fn main() -> ExitCode {
         Some(Command::Soak {
             minutes,
             seed,
+            balanced,
             force,
-        }) => verdict(soak_cmd(minutes, seed, force)),
+        }) => verdict(soak_cmd(minutes, seed, balanced, force)),
         Some(Command::Plot { trace, out, size }) => report(
             shisen::tools::output::Outputs::new()
                 .input(&trace)

@@ -369,7 +369,7 @@ pub fn progress(total: f64, unit: &str) -> indicatif::ProgressBar {
     shisen::tools::parallel::bar(total as u64, &format!("{unit} (Ctrl-C stops)"))
 }
 
-pub fn soak_cmd(minutes: f64, seed: u64, force: bool) -> Result<bool> {
+pub fn soak_cmd(minutes: f64, seed: u64, balanced: bool, force: bool) -> Result<bool> {
     if !(minutes.is_finite() && minutes > 0.0) {
         anyhow::bail!("--minutes: must be a positive number, got {minutes}");
     }
@@ -382,7 +382,7 @@ pub fn soak_cmd(minutes: f64, seed: u64, force: bool) -> Result<bool> {
     let total = (minutes * 60.0) as u64;
     let bar = shisen::tools::parallel::bar(total, "s simulated (Ctrl-C stops)");
     let wall = std::time::Instant::now(); // reporting only
-    let r = shisen::tools::soak::soak(minutes, seed, |f| {
+    let r = shisen::tools::soak::soak(minutes, seed, balanced, |f| {
         bar.set_position((f * total as f64) as u64);
         !stop_requested()
     });
@@ -404,8 +404,8 @@ pub fn soak_cmd(minutes: f64, seed: u64, force: bool) -> Result<bool> {
         r.evasions, r.steps.0, r.steps.1, r.farthest
     );
     println!(
-        "  effort: staggered {} times, fatigue {:.2} at the end",
-        r.staggers.0, r.staggers.1
+        "  effort: staggered {} times, fatigue {:.2} at the end; knocked down {} times, up {} times",
+        r.staggers.0, r.staggers.1, r.knockdowns.0, r.knockdowns.1
     );
     let t = &r.tally;
     println!(

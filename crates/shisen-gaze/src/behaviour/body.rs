@@ -230,6 +230,21 @@ impl BodyPlan {
         self.still_since = t + p.step_time;
     }
 
+    /// Plan the feet from `pelvis` (a ground point) at `t`, unless a step
+    /// is under way.
+    pub fn place(&mut self, pelvis: DVec3, t: f64) {
+        if self.step.as_ref().is_some_and(|s| !s.done(t)) {
+            return;
+        }
+        self.step = Some(Reach {
+            from: pelvis,
+            to: pelvis,
+            t0: t,
+            dur: 1e-3,
+            back: false,
+        });
+    }
+
     /// Give ground from a blow: a step straight away from `from` (a
     /// world point, the opponent), with the trunk thrown back.
     pub fn give_ground(&mut self, p: &BehaviourParams, from: DVec3, t: f64) {

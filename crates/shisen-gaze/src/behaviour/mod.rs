@@ -182,11 +182,14 @@ impl Behaviour {
         self.corner = corner;
     }
 
-    /// Staggered by a blow at `t` until `until`: the VH gives ground from
-    /// `from` (the opponent), its actions called off.
-    pub fn stagger(&mut self, p: &BehaviourParams, from: DVec3, t: f64, until: f64) {
+    /// Staggered by a blow at `t` until `until`: its actions called off,
+    /// and, given `from` (the opponent), a planned step of ground away
+    /// from it (a physical body gives ground by the blow itself).
+    pub fn stagger(&mut self, p: &BehaviourParams, from: Option<DVec3>, t: f64, until: f64) {
         self.plan = Plan::Idle;
-        self.body.give_ground(p, from, t);
+        if let Some(from) = from {
+            self.body.give_ground(p, from, t);
+        }
         self.staggered_until = until;
     }
 
@@ -316,6 +319,14 @@ impl Behaviour {
     /// rest, the trunk's rotation): the guard's stance rides on it.
     pub fn set_trunk(&mut self, offset: DVec3, rotation: DQuat) {
         self.body.trunk = (offset, rotation);
+    }
+
+    /// Plan the feet from where the body's pelvis is (`pelvis`, a ground
+    /// point) at `t`, unless a footwork step is under way: a physical
+    /// body that a blow moved, or that fell and got up, fights on from
+    /// where it stands.
+    pub fn place(&mut self, pelvis: DVec3, t: f64) {
+        self.body.place(pelvis, t);
     }
 
     /// Footwork steps started.

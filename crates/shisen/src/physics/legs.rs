@@ -289,7 +289,9 @@ impl Legs {
             if matches!(part, Part::Foot(_)) {
                 cb = cb
                     .friction(SOLE_FRICTION)
-                    .friction_combine_rule(CoefficientCombineRule::Max);
+                    .friction_combine_rule(CoefficientCombineRule::Max)
+                    // The grip's anchors (B1, balance::grip).
+                    .active_hooks(ActiveHooks::MODIFY_SOLVER_CONTACTS);
             }
             colliders.push(phys.insert_collider(cb, Some(h)));
             handles.push(h);

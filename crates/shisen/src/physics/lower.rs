@@ -404,6 +404,18 @@ impl LowerBody {
         }
     }
 
+    /// Call off the footwork steps that began at `t`: the feet stay where
+    /// they stand (a body settling after it got up, B5).
+    pub fn hold_feet(&mut self, t: f64) {
+        for f in &mut self.feet {
+            if let Some(s) = f.swing.filter(|s| s.t0 >= t) {
+                f.at = s.from;
+                f.swing = None;
+                self.steps -= 1;
+            }
+        }
+    }
+
     /// Step planted foot `k` back to its place under the pelvis (a foot
     /// the body slid or twisted on the canvas, re-placed as a boxer
     /// resets the stance), if both feet are planted. Returns whether it

@@ -112,6 +112,21 @@ mod tests {
                 "cannot fail",
             ),
             (
+                "Scene(\n  duration: 1.0,\n  expect: [\n    Knockdowns(from: 0.0, to: 1.0),\n  ],\n)",
+                4,
+                "cannot fail",
+            ),
+            (
+                "Scene(\n  duration: 1.0,\n  expect: [\n    Knockdowns(from: 0.0, to: 1.0, at_least: 1),\n  ],\n)",
+                4,
+                "needs a physical body",
+            ),
+            (
+                "Scene(\n  duration: 1.0,\n  vh: (body: (pelvis: Balanced)),\n  expect: [\n    Knockdowns(from: 0.0, to: 1.0, at_least: 2, at_most: Some(1)),\n  ],\n)",
+                5,
+                "at_most",
+            ),
+            (
                 "Scene(\n  duration: 2.0,\n  timeline: [\n    (at: 0.5, do: Punch(hand: Left, target: Head, speed: 5.0)),\n    (at: 0.5, do: Punch(hand: Left, target: Body, speed: 5.0)),\n  ],\n)",
                 5,
                 "one punch at a time",

@@ -7,6 +7,7 @@ use std::path::Path;
 use super::format::Scene;
 use crate::physics::body::BodyPlan;
 use crate::physics::body::OpponentPart;
+use crate::physics::lower::Pelvis;
 use crate::physics::plausible::check_gains;
 use crate::sim::DT;
 use crate::sim::expect::Expect;
@@ -240,6 +241,28 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
                 *at_least == 0 && at_most.is_none()
             }
             Expect::Blinks { at_least, .. } => *at_least == 0,
+            Expect::Knockdowns {
+                at_least,
+                at_most,
+                get_ups,
+                ..
+            } => {
+                if at_most.is_some_and(|m| m < *at_least) {
+                    return Err(err(
+                        format!("expect[{i}].at_most"),
+                        format!("must be at least at_least ({at_least})"),
+                    ));
+                }
+                if (*at_least > 0 || *get_ups > 0) && scene.vh.body.pelvis != Pelvis::Balanced {
+                    return Err(err(
+                        format!("expect[{i}]"),
+                        "a knockdown needs a physical body: set vh.body.pelvis: Balanced (a driven \
+                         pelvis never falls, so as written it cannot pass)"
+                            .into(),
+                    ));
+                }
+                *at_least == 0 && at_most.is_none() && *get_ups == 0
+            }
             Expect::Fatigue {
                 at_least, at_most, ..
             } => {
@@ -286,8 +309,8 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
         if vacuous {
             return Err(err(
                 format!("expect[{i}].at_least"),
-                "must be at least 1 (or, for Blows and Evades, give at_most): as written it \
-                 cannot fail"
+                "must be at least 1 (or, for Blows, Evades and Knockdowns, give at_most): as \
+                 written it cannot fail"
                     .into(),
             ));
         }

@@ -16,12 +16,13 @@ pub mod expect;
 pub mod model;
 mod sample;
 pub mod stats;
+mod streams;
 pub mod timeline;
 pub mod track;
 
 use glam::{DVec2, DVec3, Quat, Vec3};
-use rand::SeedableRng;
-use rand::rngs::StdRng;
+
+use streams::Streams;
 
 use crate::physics::balance::Balance;
 use crate::physics::body::{OpponentPart, Seg, Shape, arm_ik};
@@ -63,25 +64,6 @@ const SPARRING_HOLD: f64 = 5.0;
 /// A seen glove threatens the eyes when its path passes this close to
 /// them, m (about a glove's width).
 const EYE_THREAT_MISS: f64 = 0.12;
-
-/// Independent random streams, one per consumer, all derived from the
-/// scene seed, so adding draws to one never shifts another.
-struct Streams {
-    behaviour: StdRng,
-    oculomotor: StdRng,
-    face: StdRng,
-}
-
-impl Streams {
-    fn new(seed: u64) -> Self {
-        let derive = |k: u64| StdRng::seed_from_u64(seed ^ k.wrapping_mul(0x9E37_79B9_7F4A_7C15));
-        Streams {
-            behaviour: derive(1),
-            oculomotor: derive(2),
-            face: derive(3),
-        }
-    }
-}
 
 /// A running simulation: the evolving state of one [`Model`].
 pub struct Sim {
@@ -126,6 +108,8 @@ pub struct Sim {
     /// The physical body's balance: its state, knockdowns and get-ups
     /// (idle while the pelvis is driven).
     pub balance: Balance,
+    /// When the VH was last knocked down (the referee's count, [`Sim::count`]).
+    knocked_at: Option<f64>,
     /// Your avatar's legs, feet and waist, carried under its head (in its
     /// own frame: see [`Sim::avatar_frame`]).
     pub avatar: Carried,
@@ -211,6 +195,7 @@ impl Sim {
             neck: NeckState::default(),
             lower,
             balance: Balance::default(),
+            knocked_at: None,
             avatar,
             head_touch: Vec::new(),
             effort: Effort::default(),
@@ -285,6 +270,7 @@ impl Sim {
         self.neck = NeckState::default();
         self.lower = LowerBody::new(&self.model.params.body);
         self.balance = Balance::default();
+        self.knocked_at = None;
         self.counted = (0, 0);
         self.resets += 1;
     }
@@ -390,6 +376,8 @@ impl Sim {
                 .position(self.world.part(OpponentPart::Head))
                 .as_dvec3();
             let tired = self.effort.behaviour(&p.effort, &p.behaviour);
+            // A physical body gives ground by the blow itself (B5).
+            let from = (self.world.legs.is_none()).then_some(from);
             self.behaviour
                 .stagger(&tired, from, t, self.effort.staggered_until);
         }

@@ -60,6 +60,9 @@ pub struct FighterStats {
     pub missed: u32,
     /// Punches evaded (slipped, ducked, leant away from): the VH's only.
     pub evasions: u32,
+    /// Times this fighter was knocked down (a physical body only:
+    /// `vh.body.pelvis: Balanced`).
+    pub knockdowns: u32,
 }
 
 impl FighterStats {
@@ -78,6 +81,7 @@ impl FighterStats {
         self.blocked += o.blocked;
         self.missed += o.missed;
         self.evasions += o.evasions;
+        self.knockdowns += o.knockdowns;
     }
 }
 
@@ -160,6 +164,11 @@ impl Stats {
             at: t,
             round,
         });
+    }
+
+    /// The VH was knocked down.
+    pub fn knocked_down(&mut self, round: u32) {
+        self.card(round).vh.knockdowns += 1;
     }
 
     /// The VH evaded a punch.

@@ -184,6 +184,8 @@ pub struct SoakReport {
     pub staggers: (u32, f64),
     /// Ticks an opponent glove touched the VH's head.
     pub head_hit_ticks: u64,
+    /// Times the VH was knocked down, and got up (a physical body only).
+    pub knockdowns: (u32, u32),
     /// Physics explosions recovered from.
     pub resets: u32,
     /// Blows both ways (hits landed and punches blocked, `sim::blows`).
@@ -264,9 +266,17 @@ const MAX_JOINT_GAP_MM: f64 = 10.0;
 /// on the default scene's VH, checking invariants every tick. `progress`
 /// is called about once per simulated second with the fraction done; it
 /// returns false to stop the soak there (the report covers what ran).
-pub fn soak(minutes: f64, seed: u64, mut progress: impl FnMut(f64) -> bool) -> SoakReport {
+pub fn soak(
+    minutes: f64,
+    seed: u64,
+    balanced: bool,
+    mut progress: impl FnMut(f64) -> bool,
+) -> SoakReport {
     let mut loaded = LoadedScene::default_scene();
     loaded.scene.seed = seed;
+    if balanced {
+        loaded.scene.vh.body.pelvis = crate::physics::lower::Pelvis::Balanced;
+    }
     loaded.scene.timeline.clear();
     loaded.scene.expect.clear();
     // Open sparring: no rounds (after the default's three the VH would
@@ -317,6 +327,7 @@ pub fn soak(minutes: f64, seed: u64, mut progress: impl FnMut(f64) -> bool) -> S
     r.staggers.1 = sim.effort.fatigue(&sim.params().effort);
     r.steps = (sim.behaviour.footwork_steps(), sim.lower.steps);
     r.resets = sim.resets;
+    r.knockdowns = (sim.balance.knockdowns, sim.balance.get_ups);
     r.tally = sim.tally();
     r
 }

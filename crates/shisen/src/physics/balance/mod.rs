@@ -24,13 +24,17 @@
 //! canvas) -> Rising -> Standing (a get-up).
 
 use glam::{DVec3, Quat, Vec3};
+use rand::Rng;
+use rand_distr::{Distribution, StandardNormal};
 
 use crate::physics::body::Seg;
 use crate::physics::legs::{Joint, Legs, Part};
 use crate::physics::lower::{BodyParams, LowerBody, anthro};
 use crate::physics::world::World;
 
+pub mod grip;
 pub mod params;
+use grip::Grip;
 use params::BalanceParams;
 
 /// Where the body is in the balance states.
@@ -103,10 +107,25 @@ pub struct Balance {
     swing_err: [Option<Vec3>; 2],
     /// The last measurement.
     pub last: BalanceState,
+    /// The planted soles' static friction (B1).
+    pub grip: Grip,
+    /// The motor noise's force now, x and z, N (B3).
+    sway: [f64; 2],
+    /// The hips' height goal, m: getting up, it moves toward the planned
+    /// height at no more than `HIPS_SPEED` (B5), from where the hips were
+    /// when the stance last changed.
+    hips_goal: Option<f32>,
+    /// Where a rise stands up: the centre of mass's ground point when it
+    /// began (B5).
+    rise_at: DVec3,
 }
 
 /// Gravity, m/s^2.
 const G: f64 = 9.81;
+/// How long a body that got up settles on its feet before it steps or
+/// fights, s (our choice: a boxer up from a knockdown stands through the
+/// rest of the count).
+const SETTLE: f64 = 1.5;
 
 impl Balance {
     /// Measure the body: centre of mass, capture point, tilt, and how far
@@ -170,7 +189,7 @@ impl Balance {
                 Some(Stance::Down)
             }
             Stance::Down if since > self.down_for => Some(Stance::Rising),
-            Stance::Rising if since > p.rise_time && s.tilt < 0.5 && s.hips > 0.7 => {
+            Stance::Rising if since > p.rise_time && s.tilt < 0.5 && s.hips > 0.8 => {
                 self.get_ups += 1;
                 Some(Stance::Standing)
             }
@@ -181,6 +200,8 @@ impl Balance {
         if let Some(n) = next {
             self.stance = n;
             self.since = t;
+            self.hips_goal = None;
+            self.rise_at = s.com.with_y(0.0);
         }
         next == Some(Stance::Standing)
     }
@@ -195,6 +216,20 @@ impl Balance {
         let d = (planned - body).with_y(0.0);
         let d = d.clamp_length_max(p.leash);
         body.with_y(0.0) + d
+    }
+
+    /// Where the body stands up while rising: over the ground point its
+    /// centre of mass had when the rise began, the feet gathered under it
+    /// (B5).
+    pub fn rise_at(&self) -> DVec3 {
+        self.rise_at
+    }
+
+    /// Whether the body is settling on its feet after getting up: for
+    /// `SETTLE` s it holds its weight over its feet where they are, and
+    /// neither steps nor follows the plan (B5).
+    pub fn settling(&self, t: f64) -> bool {
+        self.stance == Stance::Standing && self.get_ups > 0 && t - self.since < SETTLE
     }
 
     /// Whether a recovery step is under way (B4).
@@ -269,7 +304,14 @@ impl Balance {
     /// the posture `reference` plans, the stance legs' weight and the
     /// hanging parts' as feed-forward torques, and while rising the push
     /// that lifts the hips (B5).
-    pub fn actuate(&mut self, world: &mut World, reference: &LowerBody, body: &BodyParams, t: f64) {
+    pub fn actuate(
+        &mut self,
+        world: &mut World,
+        reference: &LowerBody,
+        body: &BodyParams,
+        t: f64,
+        rng: &mut impl Rng,
+    ) {
         let Some(legs) = world.legs.clone() else {
             return;
         };
@@ -289,10 +331,13 @@ impl Balance {
         // left the canvas yet: its leg lifts it.
         let on = [0, 1].map(|k| reference.planted(k) && legs.on_canvas(&world.phys, Part::Foot(k)));
         let shares = weight_shares(&legs, &world.phys, on, com);
+        // The planted soles hold where they stand (B1).
+        let held = on.map(|o| o && self.stance == Stance::Standing);
+        self.grip.hold(world, &legs, held);
+        let weight = total_mass * G as f32;
         // The ground's push the stance legs ask for: the weight, and a
         // horizontal spring-damper on the centre of mass toward the
         // planned pelvis (the ankle strategy, B3).
-        let weight = total_mass * G as f32;
         let planned_com = reference.pelvis().as_vec3();
         let v = self.last.com_velocity.as_vec3();
         // Through a recovery step the body is let fall toward where the
@@ -304,10 +349,29 @@ impl Balance {
         };
         let k_com = stiffness as f32 * weight / com.y.max(0.3);
         let d_com = p.com_damping as f32 * 2.0 * (k_com * total_mass).sqrt();
-        let horizontal = (-(com - planned_com) * k_com - v * d_com).with_y(0.0);
+        // Motor noise (B3): an Ornstein-Uhlenbeck force, what makes the
+        // body sway.
+        let decay = (-f64::from(dt) / p.sway_time).exp();
+        let kick = p.sway_force * (1.0 - decay * decay).sqrt();
+        for s in &mut self.sway {
+            let n: f64 = StandardNormal.sample(rng);
+            *s = *s * decay + kick * n;
+        }
+        let noise = Vec3::new(self.sway[0] as f32, 0.0, self.sway[1] as f32);
+        let horizontal = (-(com - planned_com) * k_com - v * d_com).with_y(0.0) + noise;
         // ... and the hips held at their planned height.
         let pelvis_rb = legs.rb(&world.phys, Part::Pelvis);
-        let hips = 0.5 * (planned[0].hip.y + planned[1].hip.y) as f32;
+        let planned_hips = 0.5 * (planned[0].hip.y + planned[1].hip.y) as f32;
+        // Getting up, the hips rise at a person's pace (B5); standing,
+        // they go where the plan puts them (a duck is quicker).
+        let rising = self.stance == Stance::Rising || self.settling(t);
+        let goal = self.hips_goal.get_or_insert(pelvis_rb.translation().y);
+        *goal = if rising {
+            *goal + (planned_hips - *goal).clamp(-HIPS_SPEED * dt, HIPS_SPEED * dt)
+        } else {
+            planned_hips
+        };
+        let hips = *goal;
         let k_h = 10.0 * weight;
         let vertical = k_h * (hips - pelvis_rb.translation().y)
             - 2.0 * (k_h * total_mass).sqrt() * pelvis_rb.linvel().y;
@@ -437,6 +501,10 @@ impl Balance {
 /// young men (Anderson, Madigan & Nussbaum 2007, J. Biomech. 40:3105),
 /// knee extension and hip extension about 250-300 (same source).
 const MAX_ANKLE: f32 = 200.0;
+/// The fastest the hips' height goal moves, m/s: rising from the canvas
+/// or a crouch (our choice, near the centre of mass's peak vertical speed
+/// standing up from a chair, about 0.5-0.6 m/s).
+const HIPS_SPEED: f32 = 0.6;
 /// The pelvis's turn held by the stance legs: stiffness N m/rad and
 /// damping N m s/rad (our calibration: the trunk and pelvis, about 4 kg
 /// m^2, at about 20 rad/s).

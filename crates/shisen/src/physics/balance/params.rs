@@ -83,6 +83,18 @@ pub struct BalanceParams {
     /// rising, as a share of body weight. Default 1.3. 0-3.
     #[schemars(range(min = 0.0, max = 3.0))]
     pub rise_push: f64,
+    /// Motor noise in the stance legs' push, the RMS of a horizontal
+    /// force on the body, N: what makes a person standing still sway
+    /// (van der Kooij & Peterka 2011, J. Comput. Neurosci. 30:759, whose
+    /// model needs motor noise besides sensory noise to sway as people
+    /// do). Default 20 (our calibration: the centre of mass then sways
+    /// within the human band of docs/model/balance.md, B2). 0-200 N.
+    #[schemars(range(min = 0.0, max = 200.0))]
+    pub sway_force: f64,
+    /// The noise's correlation time, s. Default 0.5 (our calibration:
+    /// quiet stance's sway has most of its power below 1 Hz). 0.01-10 s.
+    #[schemars(range(min = 0.01, max = 10.0))]
+    pub sway_time: f64,
 }
 
 impl Default for BalanceParams {
@@ -109,6 +121,8 @@ impl Default for BalanceParams {
             down_per_damage: 5.0,
             rise_time: 1.5,
             rise_push: 1.3,
+            sway_force: 20.0,
+            sway_time: 0.5,
         }
     }
 }

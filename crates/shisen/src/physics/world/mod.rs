@@ -15,6 +15,8 @@ use serde::{Deserialize, Serialize};
 use crate::physics::body::{BodyPlan, Group, JointKind, OpponentPart, Seg, Shape};
 use crate::physics::control::{Gains, JointState, JointTarget, pd_torque};
 mod build;
+mod soles;
+pub use soles::SoleSlip;
 
 pub use build::HEAD_RESTITUTION;
 
@@ -138,6 +140,8 @@ pub struct World {
     /// The physical lower body, when the pelvis is free
     /// ([`Pelvis::Balanced`]): the trunk is then a dynamic body on it.
     pub legs: Option<Legs>,
+    /// The physical soles' contacts, as the balance's grip asks for them.
+    soles: Option<soles::Soles>,
 }
 
 impl World {
@@ -210,6 +214,9 @@ impl World {
             local_inertia,
             driven: Vec::new(),
             root_path: [Vec3::ZERO; 3],
+            soles: legs.as_ref().map(|l| soles::Soles {
+                feet: [0, 1].map(|k| (l.colliders[Part::Foot(k).index()], None)),
+            }),
             legs,
         }
     }
@@ -543,12 +550,23 @@ impl World {
 
     /// Advance the physics by one fixed step.
     pub fn step(&mut self) {
-        self.phys.step();
+        match &self.soles {
+            Some(soles) => self.phys.step_with_events(soles, &()),
+            None => self.phys.step(),
+        }
         if let Some(legs) = &self.legs {
             for h in legs.handles.iter().chain([&legs.trunk]) {
                 self.phys.bodies[*h].reset_forces(false);
                 self.phys.bodies[*h].reset_torques(false);
             }
+        }
+    }
+
+    /// Ask sole `k`'s contact for `slip` through the next step (none: plain
+    /// friction).
+    pub fn set_sole_slip(&mut self, k: usize, slip: Option<SoleSlip>) {
+        if let Some(s) = &mut self.soles {
+            s.feet[k].1 = slip;
         }
     }
 

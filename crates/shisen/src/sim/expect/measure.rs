@@ -2,6 +2,7 @@
 //! accumulator, in constant memory.
 
 use super::{Expect, JointName};
+use crate::physics::balance::Stance;
 use crate::sim::Sample;
 use crate::sim::blows::BlowKind;
 use shisen_gaze::behaviour::{ActionKind, EYES_ON_TARGET};
@@ -26,6 +27,8 @@ pub(super) struct Acc {
     /// Evades: the head's position when the evasion under way began,
     /// whether it got far enough, whether it was touched.
     pub(super) evasion: Option<(glam::DVec3, bool, bool)>,
+    /// Knockdowns: the body's state last tick.
+    pub(super) stance: Stance,
 }
 
 fn angle(s: &Sample, j: JointName) -> f64 {
@@ -201,6 +204,14 @@ pub(super) fn measure(e: &Expect, a: &mut Acc, s: &Sample, duration: f64) {
                 a.max = a.max.max(v);
                 a.min = Some(a.min.map_or(v, |m: f64| m.min(v)));
             }
+        }
+        Expect::Knockdowns { from, to, .. } => {
+            // Knockdowns in `hits`, get-ups in `n`.
+            if inside(s.t, *from, *to) {
+                a.hits += u64::from(a.stance == Stance::Standing && s.stance == Stance::Falling);
+                a.n += u64::from(a.stance == Stance::Rising && s.stance == Stance::Standing);
+            }
+            a.stance = s.stance;
         }
         Expect::Finite => {
             a.n += 1;

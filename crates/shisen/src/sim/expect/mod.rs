@@ -333,6 +333,30 @@ pub enum Expect {
         #[schemars(range(min = 0.0, max = 86_400.0))]
         to: f64,
     },
+    /// The VH is knocked down (its physical body falls: it needs
+    /// `vh.body.pelvis: Balanced`) at least `at_least` and at most
+    /// `at_most` times in the window, and gets up at least `get_ups` times
+    /// in it.
+    Knockdowns {
+        /// Window start, s from the run's start (0 to a day, 86400 s).
+        #[schemars(range(min = 0.0, max = 86_400.0))]
+        from: f64,
+        /// Window end, s (not before `from`, not after the run's end).
+        #[schemars(range(min = 0.0, max = 86_400.0))]
+        to: f64,
+        /// Least knockdowns, a whole number, 0-10000.
+        #[serde(default)]
+        #[schemars(range(min = 0, max = 10_000))]
+        at_least: u32,
+        /// Most knockdowns, if given: a whole number, 0-10000.
+        #[serde(default)]
+        #[schemars(range(min = 0, max = 10_000))]
+        at_most: Option<u32>,
+        /// Least get-ups, a whole number, 0-10000 (default 0).
+        #[serde(default)]
+        #[schemars(range(min = 0, max = 10_000))]
+        get_ups: u32,
+    },
     /// Every state value stays finite (no NaN) for the whole run.
     Finite,
 }
@@ -361,6 +385,7 @@ impl Expect {
             | Expect::Evades { from, to, .. }
             | Expect::Range { from, to, .. }
             | Expect::Fatigue { from, to, .. }
+            | Expect::Knockdowns { from, to, .. }
             | Expect::ActionShare { from, to, .. } => Some((*from, *to)),
             Expect::AngleBelow { from, to, .. } => {
                 Some((from.unwrap_or(0.0), to.unwrap_or(duration)))

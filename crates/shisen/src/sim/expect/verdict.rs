@@ -269,6 +269,23 @@ pub(super) fn judge(e: &Expect, a: &Acc, duration: f64) -> Verdict {
                 pass: a.n > 0 && lo >= *at_least && a.max <= *at_most,
             }
         }
+        Expect::Knockdowns {
+            from,
+            to,
+            at_least,
+            at_most,
+            get_ups,
+        } => Verdict {
+            what: format!(
+                "knocked down {at_least}{} times in [{from}, {to}] s, up at least {get_ups} times",
+                at_most.map_or("+".to_string(), |m| format!("-{m}"))
+            ),
+            measured: format!("{} knockdowns, {} get-ups", a.hits, a.n),
+            value: a.hits as f64,
+            pass: a.hits >= u64::from(*at_least)
+                && at_most.is_none_or(|m| a.hits <= u64::from(m))
+                && a.n >= u64::from(*get_ups),
+        },
         Expect::Finite => Verdict {
             what: "state finite throughout (no NaN)".into(),
             measured: if a.bad {

@@ -14,6 +14,7 @@ use crate::sim::timeline::{Action, Event, Hand, Part, PunchTarget};
 use crate::sim::{BodySpec, Model, Profile, PropShape, Sample, Sim};
 use crate::tools::plot::{Panel, Series, Stroke, chart};
 
+mod balance;
 mod blow;
 mod tvor;
 
@@ -186,6 +187,7 @@ pub fn battery(model: &Model) -> (Vec<Row>, Curves) {
     glance(model, &mut rows);
     blow::blows(model, &mut rows);
     tvor::tvor(model, &mut rows);
+    balance::balance(model, &mut rows);
     (rows, curves)
 }
 
