@@ -14,3 +14,9 @@ bin=target/release/shisen
 # the lids blink, the face winces.
 "$bin" render scenes/jab_snaps_head.ron --view orbit:1.45,0.1,1.1 --size 400x300 \
   --at 1.06 --until 1.66 --fps 100 --slow 10 --out docs/anim/jab_snaps_head.png
+
+# The whole body in the physics (scenes/knockdown.ron, pelvis: Balanced):
+# a jab at 1 s does not put the VH down; a hard hook at 3.5 s does; it
+# lies through the count and gets up. Seen from the side, real time.
+"$bin" render scenes/knockdown.ron --view orbit:1.2,0.25,3.2 --size 400x300 \
+  --at 3.3 --until 10.5 --fps 6 --out docs/anim/knockdown.png

@@ -199,12 +199,21 @@ impl Sim {
         }
         if self.balance.stance.up() {
             self.lower.step(&p, &cmd, t + dt, dt);
-            if settling {
+            if settling && !self.balance.recovering(t) {
                 self.lower.hold_feet(t + dt);
             }
         } else {
+            // Down or rising: the legs posed over the feet where they are
+            // (a stance planned around the hips would pull them, and the
+            // body with them, toward feet it does not stand on).
             self.lower = LowerBody::standing_at(&p, cmd.pelvis, facing);
+            for (k, f) in feet.iter().enumerate() {
+                if let Some(f) = f {
+                    self.lower.replant(k, *f);
+                }
+            }
             self.lower.step(&p, &cmd, t + dt, dt);
+            self.lower.hold_feet(t + dt);
         }
         self.balance
             .actuate(&mut self.world, &self.lower, &p, t + dt, &mut self.rng.body);
