@@ -9,6 +9,13 @@ contacts happen; shisen runs its default sparring scene headless (physics +
 vision + attention + behaviour + oculomotor + PD control + face). Both are
 timed here, one after the other, on this machine.
 
+Two pairs are timed: the default body (a driven pelvis: torso, head,
+eyes, arms) and the whole physical body (`vh.body.pelvis: Balanced`:
+`export-mjcf --balanced` adds a free pelvis, legs and the canvas; shisen
+runs `soak --balanced`, sparring with the physical body). MuJoCo's body is
+uncontrolled, so its physical VH falls and lies on the canvas: its
+contacts are those of a body lying down.
+
 Usage:  pip install mujoco && python3 benches/mujoco_compare.py [seconds]
         SHISEN_BIN=/path/to/shisen python3 benches/mujoco_compare.py
         (another build of shisen, e.g. a before-and-after pair; not rebuilt)
@@ -63,6 +70,18 @@ def shisen_rate():
     return ticks / wall, ticks
 
 
+def shisen_balanced_rate():
+    out = subprocess.run(
+        [BIN, "soak", "--balanced", "--minutes", str(SIM_SECONDS / 60.0)],
+        cwd=ROOT, check=False, capture_output=True, text=True,
+    ).stdout
+    m = re.search(r"\((\d+) ticks\) in ([0-9.]+) s wall", out)
+    if not m:
+        sys.exit("could not read shisen's timing from:\n" + out)
+    ticks, wall = int(m.group(1)), float(m.group(2))
+    return ticks / wall, ticks
+
+
 def main():
     if "SHISEN_BIN" not in os.environ:
         build()
@@ -70,11 +89,19 @@ def main():
         xml = os.path.join(tmp, "shisen.xml")
         subprocess.run([BIN, "export-mjcf", "--out", xml], check=True)
         mj, mj_steps, ncon = mujoco_rate(xml)
+        full = os.path.join(tmp, "shisen_balanced.xml")
+        subprocess.run([BIN, "export-mjcf", "--balanced", "--out", full], check=True)
+        mjb, mjb_steps, nconb = mujoco_rate(full)
     ours, ticks = shisen_rate()
-    print(f"MuJoCo {mujoco.__version__} physics-only: {mj:,.0f} steps/s ({mj_steps} steps, {ncon} contacts at the end)")
-    print(f"shisen full control step:       {ours:,.0f} steps/s ({ticks} ticks)")
+    oursb, ticksb = shisen_balanced_rate()
+    print(f"MuJoCo {mujoco.__version__} physics-only, driven body: {mj:,.0f} steps/s ({mj_steps} steps, {ncon} contacts at the end)")
+    print(f"shisen full control step, driven body:   {ours:,.0f} steps/s ({ticks} ticks)")
     print(f"ratio: one shisen step costs {mj / ours:.2f} MuJoCo physics steps "
           f"(shisen runs {ours / 1000:.1f}x real time at 1 kHz)")
+    print(f"MuJoCo physics-only, whole physical body: {mjb:,.0f} steps/s ({mjb_steps} steps, {nconb} contacts at the end)")
+    print(f"shisen full control step, physical body:  {oursb:,.0f} steps/s ({ticksb} ticks)")
+    print(f"ratio: one shisen step costs {mjb / oursb:.2f} MuJoCo physics steps "
+          f"(shisen runs {oursb / 1000:.1f}x real time at 1 kHz)")
 
 
 if __name__ == "__main__":

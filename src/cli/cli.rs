@@ -237,6 +237,10 @@ pub enum Command {
         /// Output XML file.
         #[arg(long)]
         out: PathBuf,
+        /// The whole physical body (`vh.body.pelvis: Balanced`): a free
+        /// pelvis on the canvas, the waist, hips, knees and ankles.
+        #[arg(long)]
+        balanced: bool,
     },
     /// Face tools: export the head with morph targets, calibrate the muscle
     /// database from subject data.

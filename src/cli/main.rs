@@ -226,7 +226,7 @@ fn main() -> ExitCode {
         }) => report(study_cmd(&study, &out, jobs(j), shard)),
         Some(Command::Merge { out, inputs }) => report(merge_cmd(&inputs, &out)),
         Some(Command::Face { command }) => report(face_cmd(command)),
-        Some(Command::ExportMjcf { out }) => report(export_mjcf(&out)),
+        Some(Command::ExportMjcf { out, balanced }) => report(export_mjcf(&out, balanced)),
         Some(Command::Fidelity {
             scene,
             profile,
@@ -270,12 +270,19 @@ fn main() -> ExitCode {
 }
 
 /// `shisen export-mjcf`.
-fn export_mjcf(out: &std::path::Path) -> Result<()> {
+fn export_mjcf(out: &std::path::Path, balanced: bool) -> Result<()> {
     shisen::tools::output::Outputs::new()
         .file_as("--out", out, "an MJCF model (XML)", &["xml"])
         .check()?;
-    let xml =
-        shisen::tools::mjcf::mjcf(&shisen::physics::body::BodyPlan::default(), shisen::sim::DT);
+    let body = shisen::physics::lower::BodyParams {
+        pelvis: shisen::physics::lower::Pelvis::Balanced,
+        ..Default::default()
+    };
+    let xml = shisen::tools::mjcf::mjcf(
+        &shisen::physics::body::BodyPlan::default(),
+        shisen::sim::DT,
+        balanced.then_some(&body),
+    );
     shisen::tools::output::write_whole(out, xml.as_bytes())
         .with_context(|| format!("cannot write {}", out.display()))
 }

@@ -160,13 +160,13 @@ impl Joint {
 
 /// The foot's box: half its width, half its height (the sole to the
 /// ankle's underside), m.
-const FOOT_HALF_WIDTH: f32 = 0.045;
-const FOOT_HALF_HEIGHT: f32 = 0.025;
+pub const FOOT_HALF_WIDTH: f32 = 0.045;
+pub const FOOT_HALF_HEIGHT: f32 = 0.025;
 /// Thigh and shank radii, m (a capsule round the bone, as drawn).
-const THIGH_RADIUS: f32 = 0.07;
-const SHANK_RADIUS: f32 = 0.05;
+pub const THIGH_RADIUS: f32 = 0.07;
+pub const SHANK_RADIUS: f32 = 0.05;
 /// The pelvis box's half extents, m (hip width, depth).
-const PELVIS_HALF: Vec3 = Vec3::new(0.15, 0.07, 0.1);
+pub const PELVIS_HALF: Vec3 = Vec3::new(0.15, 0.07, 0.1);
 /// Friction of a shoe's sole on the canvas (rubber on canvas; boxing
 /// shoes are made to grip and pivot: about 0.6-0.9, our choice 0.8).
 pub const SOLE_FRICTION: f32 = 0.8;
