@@ -246,7 +246,10 @@ fn check(s: &Sample, sim: &Sim, failures: &mut Vec<String>) -> (f64, f64) {
         worst = worst.max(e);
         if e > 2.0 * HARD_STOP_MARGIN_DEG as f64 + 5.0 {
             let name = sim.world.plan.segments[i.index()].name;
-            fail(format!("{name} beyond its range by {e:.1} deg"));
+            fail(format!(
+                "{name} beyond its range by {e:.1} deg (the body {})",
+                s.stance.name()
+            ));
         }
     }
     let gap_mm = f64::from(sim.world.joint_gap()) * 1000.0;
