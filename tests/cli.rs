@@ -369,3 +369,65 @@ fn outputs_never_overwrite_inputs_or_each_other() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("does not exist"), "{err}");
 }
+
+/// `run --sound`: a 20 s scene's soundtrack as a WAV (stereo, 48 kHz, 16
+/// bit, the run's length), each blow of the trace heard as the sound
+/// rises where its glove struck (30 ms before the row that reports it);
+/// an output that is not a WAV is refused before anything runs.
+#[test]
+fn the_soundtrack_is_written_with_each_blow_at_its_tick() {
+    let dir = std::env::temp_dir().join(format!("shisen-sound-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let (wav, csv) = (dir.join("s.wav"), dir.join("s.csv"));
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/sound.ron");
+    let (w, c) = (wav.to_str().unwrap(), csv.to_str().unwrap());
+    let (code, out, err) = shisen(&["run", scene.to_str().unwrap(), "--sound", w, "--trace", c]);
+    assert_eq!(code, 0, "{out}{err}");
+    let mut r = hound::WavReader::open(&wav).unwrap();
+    let spec = r.spec();
+    assert_eq!(
+        (spec.channels, spec.sample_rate, spec.bits_per_sample),
+        (2, 48_000, 16)
+    );
+    let x: Vec<f32> = r
+        .samples::<i16>()
+        .map(|s| f32::from(s.unwrap()) / 32768.0)
+        .collect();
+    assert_eq!(x.len(), 2 * 20 * 48_000);
+    // Level over 2 ms frames, both ears.
+    let f: Vec<f32> = x
+        .chunks(192)
+        .map(|c| (c.iter().map(|v| v * v).sum::<f32>() / 96.0).sqrt())
+        .collect();
+    let trace = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = trace.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |n: &str| head.iter().position(|h| *h == n).unwrap();
+    let (tc, bc) = (col("t"), col("blows"));
+    let mut blows = Vec::new();
+    for l in lines {
+        let v: Vec<&str> = l.split(',').collect();
+        if !v[bc].is_empty() {
+            blows.push(v[tc].parse::<f64>().unwrap() - 0.03);
+        }
+    }
+    assert!(blows.len() >= 4, "{blows:?}");
+    let mut last = f64::NEG_INFINITY;
+    for t in blows {
+        // A glove on the guard and then the head in one punch is one sound.
+        if t - last < 0.045 {
+            continue;
+        }
+        last = t;
+        let k = (t / 0.002).round() as usize;
+        let before = f[k - 20..k - 3].iter().copied().fold(0.0, f32::max);
+        let after = f[k - 1..k + 6].iter().copied().fold(0.0, f32::max);
+        assert!(
+            after > 1.5 * before,
+            "a blow at {t:.3} s: {after} after, {before} before"
+        );
+    }
+    let (code, _, err) = shisen(&["run", scene.to_str().unwrap(), "--sound", "x.png"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--sound"), "{err}");
+}

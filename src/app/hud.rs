@@ -44,6 +44,9 @@ pub struct BoutUi {
     pub report_png: Option<PathBuf>,
     /// The last message (a saved file, an error).
     pub status: Option<String>,
+    /// Sound volume, 0-1, and whether it is muted (F4).
+    pub volume: f32,
+    pub muted: bool,
 }
 
 impl BoutUi {
@@ -59,6 +62,8 @@ impl BoutUi {
             report_rect: None,
             report_png: None,
             status: None,
+            volume: 1.0,
+            muted: false,
         }
     }
 
@@ -291,7 +296,7 @@ pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session, sim: &shisen::sim::Sim
     }
     // Keys, bottom left, on a dark band (the canvas behind is light).
     let keys = p.layout_no_wrap(
-        "Esc menu   F2 report   F6 replay   F3 figures   V view".to_string(),
+        "Esc menu   F2 report   F6 replay   F3 figures   V view   F4 sound".to_string(),
         small,
         Color32::from_gray(210),
     );
@@ -411,6 +416,16 @@ pub fn menu(ctx: &egui::Context, st: &mut BoutUi, s: &mut Session) -> Option<Men
                     ui.end_row();
                 });
             }
+            ui.separator();
+            ui.horizontal(|ui| {
+                let mut on = !st.muted;
+                ui.checkbox(&mut on, text("Sound (F4)"));
+                st.muted = !on;
+                ui.add_enabled(
+                    on,
+                    egui::Slider::new(&mut st.volume, 0.0..=1.0).text("volume"),
+                );
+            });
             ui.separator();
             ui.horizontal(|ui| {
                 if ui.button(text("Fight! (Enter)")).clicked() || enter {

@@ -13,6 +13,7 @@ mod hud;
 mod panels;
 pub mod record;
 pub mod session;
+mod speaker;
 pub mod tuning;
 mod view3d;
 
@@ -69,6 +70,8 @@ pub struct AppOptions {
     /// Render the 3D view at this fraction of the window's resolution
     /// (fixed; else chosen to hold 60 fps).
     pub render_scale: Option<f32>,
+    /// Sound volume, 0-1 (else full).
+    pub volume: Option<f32>,
 }
 
 /// What the screenshot came to (shared with egui's callback).
@@ -141,6 +144,8 @@ struct ShisenApp {
     shot: Option<Shot>,
     /// Set when the run must end with an error (blank screenshot).
     failure: Arc<Mutex<Option<String>>>,
+    /// The sound output (`None`: no device, the bout runs silent).
+    speaker: Option<speaker::Speaker>,
 }
 
 /// Open the window and run until it is closed.
@@ -183,6 +188,14 @@ pub fn run(opts: AppOptions) -> anyhow::Result<()> {
                 session.restart_with(opponent, bout);
             }
             let mut bout_ui = BoutUi::new(opponent.unwrap_or_default(), bout);
+            bout_ui.volume = opts.volume.unwrap_or(1.0);
+            let speaker = match speaker::Speaker::open() {
+                Ok(s) => Some(s),
+                Err(why) => {
+                    tracing::warn!("{why}: the bout runs silent");
+                    None
+                }
+            };
             bout_ui.report = opts.report.then_some(0);
             if opts.menu || (opts.opponent.is_none() && opts.exit_after.is_none()) {
                 bout_ui.toggle_menu(&mut session);
@@ -206,6 +219,7 @@ pub fn run(opts: AppOptions) -> anyhow::Result<()> {
                 report_shot: None,
                 shot: None,
                 failure: fail,
+                speaker,
             }))
         }),
     )
@@ -217,6 +231,17 @@ pub fn run(opts: AppOptions) -> anyhow::Result<()> {
 }
 
 impl ShisenApp {
+    /// Play what the simulation made heard since the last frame (dropped
+    /// where there is no device).
+    fn play_sound(&mut self) {
+        if let Some(sp) = &self.speaker {
+            let ui = &self.bout_ui;
+            sp.set_volume(if ui.muted { 0.0 } else { ui.volume });
+            sp.play(&self.session.heard);
+        }
+        self.session.heard.clear();
+    }
+
     fn command(&mut self, c: Command) {
         let s = &mut self.session;
         // While a replay is watched the bout waits: nothing may step,
@@ -256,6 +281,7 @@ impl ShisenApp {
             Command::Report => self.bout_ui.toggle_report(s),
             Command::Replay => s.toggle_replay(),
             Command::DevFigures => self.bout_ui.dev = !self.bout_ui.dev,
+            Command::Mute => self.bout_ui.muted = !self.bout_ui.muted,
             _ => {}
         }
     }
@@ -492,6 +518,7 @@ impl eframe::App for ShisenApp {
         self.last = now;
         let sim_started = Instant::now();
         self.session.advance(wall);
+        self.play_sound();
         if let Some(r) = &mut self.session.replay {
             r.advance(wall.min(MAX_REPLAY_STEP));
         }

@@ -13,6 +13,7 @@ use shisen::scene::LoadedScene;
 use shisen::sim::blows::Blow;
 use shisen::sim::timeline::Event;
 use shisen::sim::{DT, Sample, Sim};
+use shisen::sound::{RATE, Soundtrack};
 use shisen::tools::trace::TraceWriter;
 
 use super::bout::{BoutLog, Replay};
@@ -125,6 +126,10 @@ pub struct Session {
     /// A replay being watched (the live bout is paused meanwhile).
     pub replay: Option<Replay>,
     trace: Option<(PathBuf, TraceWriter<BufWriter<File>>)>,
+    /// The bout's soundtrack, heard from your head.
+    pub sound: Soundtrack,
+    /// Samples heard and not yet played (at most a second is kept).
+    pub heard: Vec<[f32; 2]>,
 }
 
 impl Session {
@@ -132,6 +137,7 @@ impl Session {
     pub fn new(loaded: LoadedScene, source: SceneSource) -> Self {
         let sim = loaded.sim();
         let loaded_opponent = loaded.scene.vh.opponent;
+        let loaded_seed = loaded.scene.seed;
         Session {
             control: OpponentControl::new(&sim.world.plan),
             sim,
@@ -146,6 +152,8 @@ impl Session {
             events: Vec::new(),
             replay: None,
             trace: None,
+            sound: Soundtrack::new(loaded_seed),
+            heard: Vec::new(),
         }
     }
 
@@ -233,6 +241,9 @@ impl Session {
     pub fn step(&mut self) {
         let s = self.sim.step();
         let sample = s.clone();
+        self.sound.hear(&self.sim, &mut self.heard);
+        let over = self.heard.len().saturating_sub(RATE as usize);
+        self.heard.drain(..over);
         self.log.push(&sample);
         if let Some(b) = sample.blows.last() {
             self.last_blow = Some(LastBlow {

@@ -68,6 +68,9 @@ pub struct Cli {
     /// resolution, 0.5-1 (default: chosen to hold 60 fps).
     #[arg(long, value_parser = number_in(0.5, 1.0, ""))]
     pub render_scale: Option<f64>,
+    /// Window: sound volume, 0-1 (0: muted; F4 mutes and unmutes).
+    #[arg(long, value_parser = number_in(0.0, 1.0, ""))]
+    pub volume: Option<f64>,
     /// Print the default bindings (RON) and exit.
     #[arg(long)]
     pub print_bindings: bool,
@@ -98,6 +101,10 @@ pub enum Command {
         /// Also plot the run (gaze, eye and head angles) to this PNG.
         #[arg(long)]
         plot: Option<PathBuf>,
+        /// Write the run's soundtrack, heard from your avatar's head, here
+        /// (WAV, stereo, 48 kHz, 16 bit).
+        #[arg(long)]
+        sound: Option<PathBuf>,
         /// Allow a run longer than an hour of simulated time.
         #[arg(long)]
         force: bool,
@@ -305,6 +312,11 @@ pub enum Command {
         /// most 60).
         #[arg(long, default_value_t = 1, requires = "until")]
         slow: u32,
+        /// Also write the animation's soundtrack (WAV), heard from your
+        /// avatar's head, from `--at` to `--until` (at real speed: not
+        /// with `--slow`).
+        #[arg(long, requires = "until")]
+        sound: Option<PathBuf>,
     },
 }
 
@@ -467,6 +479,7 @@ impl Cli {
             (self.report, "--report"),
             (self.menu, "--menu"),
             (self.render_scale.is_some(), "--render-scale"),
+            (self.volume.is_some(), "--volume"),
         ]
         .into_iter()
         .find_map(|(set, name)| set.then_some(name))

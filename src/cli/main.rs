@@ -9,12 +9,13 @@ mod batch;
 mod cli;
 mod face;
 mod run;
+mod sound;
 mod tune;
 
 use batch::{jobs, merge_cmd, study_cmd, test_cmd};
 use cli::*;
 use face::face_cmd;
-use run::{INTERRUPTED, Interrupted, RunArgs, install_interrupt, render, run, soak_cmd};
+use run::{Animation, INTERRUPTED, Interrupted, RunArgs, install_interrupt, render, run, soak_cmd};
 use tune::{sweep_cmd, tune_cmd};
 
 fn report(r: Result<()>) -> ExitCode {
@@ -125,6 +126,7 @@ fn main() -> ExitCode {
                 report: cli.report,
                 menu: cli.menu,
                 render_scale: cli.render_scale.map(|s| s as f32),
+                volume: cli.volume.map(|v| v as f32),
             };
             // Bad input files and outputs are usage errors (2), as for
             // every command, and are found before a window opens.
@@ -170,6 +172,7 @@ fn main() -> ExitCode {
             seed,
             duration,
             plot,
+            sound,
             force,
         }) => exit(run(RunArgs {
             scene,
@@ -178,6 +181,7 @@ fn main() -> ExitCode {
             seed,
             duration,
             plot,
+            sound,
             force,
         })),
         Some(Command::Tune {
@@ -256,6 +260,7 @@ fn main() -> ExitCode {
             until,
             fps,
             slow,
+            sound,
         }) => report(render(
             &scene,
             at,
@@ -263,7 +268,12 @@ fn main() -> ExitCode {
             size,
             view,
             &overlay,
-            until.map(|u| (u, fps, slow)),
+            until.map(|until| Animation {
+                until,
+                fps,
+                slow,
+                sound,
+            }),
         )),
         Some(Command::Schema { file, markdown }) => report(schema_cmd(file, markdown)),
     }

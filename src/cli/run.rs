@@ -10,11 +10,24 @@ use std::process::ExitCode;
 use anyhow::{Context, Result, bail};
 use shisen::scene::validate::check_duration;
 
+use super::sound::SoundFile;
 use shisen::sim::DT;
 use shisen::tools::headless;
 use shisen_app::render::{Headless, Overlays, View, write_png};
 
 use crate::cli::*;
+
+/// `render --until`: an animation instead of one picture.
+pub struct Animation {
+    /// Its end, s.
+    pub until: f64,
+    /// Frames a second of simulated time.
+    pub fps: u32,
+    /// Times slower than real time it plays.
+    pub slow: u32,
+    /// Its soundtrack's WAV file.
+    pub sound: Option<PathBuf>,
+}
 
 pub fn render(
     scene: &str,
@@ -23,12 +36,15 @@ pub fn render(
     size: (u32, u32),
     view: View,
     overlay: &[OverlayArg],
-    animation: Option<(f64, u32, u32)>,
+    animation: Option<Animation>,
 ) -> Result<()> {
     if !(at.is_finite() && at >= 0.0) {
         anyhow::bail!("--at: must be a non-negative number of seconds, got {at}");
     }
-    if let Some((until, fps, slow)) = animation {
+    if let Some(&Animation {
+        until, fps, slow, ..
+    }) = animation.as_ref()
+    {
         if !(until.is_finite() && until > at) {
             anyhow::bail!("--until {until}: must be after --at ({at} s)");
         }
@@ -42,6 +58,11 @@ pub fn render(
             anyhow::bail!(
                 "--fps {fps} with --slow {slow} plays {} frames a second; at most 60 (lower --fps or raise --slow)",
                 fps / slow
+            );
+        }
+        if slow > 1 && animation.as_ref().is_some_and(|a| a.sound.is_some()) {
+            anyhow::bail!(
+                "--sound with --slow {slow}: the soundtrack runs at real speed; leave --slow at 1"
             );
         }
         if (until - at) * f64::from(fps) > 600.0 {
@@ -62,7 +83,7 @@ pub fn render(
     }
     let loaded = load(scene)?;
     let duration = loaded.scene.duration;
-    let end = animation.map_or(at, |(until, _, _)| until);
+    let end = animation.as_ref().map_or(at, |a| a.until);
     if end > duration {
         let flag = if animation.is_some() {
             "--until"
@@ -83,12 +104,23 @@ pub fn render(
     for f in loaded.files() {
         plan = plan.input(&f);
     }
+    let sound_path = animation.as_ref().and_then(|a| a.sound.as_deref());
+    if let Some(p) = sound_path {
+        plan = plan.file_as("--sound", p, "a WAV sound file", &["wav"]);
+    }
     plan.check()?;
     let mut sim = loaded.sim();
+    let mut sound = match sound_path {
+        Some(p) => Some(SoundFile::create(p, loaded.scene.seed, end)?.starting_at(at)),
+        None => None,
+    };
     let bar = progress(at, "s simulated");
     let mut ticks = 0u64;
     while sim.time() + DT / 2.0 < at {
         sim.step();
+        if let Some(s) = &mut sound {
+            s.hear(&sim)?;
+        }
         ticks += 1;
         if ticks.is_multiple_of(1000) {
             bar.set_position(sim.time() as u64);
@@ -106,13 +138,19 @@ pub fn render(
     };
     let mut gpu = Headless::new()?;
     let image = gpu.snapshot(&sim, view, overlays, size)?;
-    if let Some((until, fps, slow)) = animation {
+    if let Some(Animation {
+        until, fps, slow, ..
+    }) = animation
+    {
         let mut frames = vec![image];
         let n = ((until - at) * f64::from(fps)).round() as usize;
         for k in 1..=n {
             let t = at + k as f64 / f64::from(fps);
             while sim.time() + DT / 2.0 < t {
                 sim.step();
+                if let Some(s) = &mut sound {
+                    s.hear(&sim)?;
+                }
             }
             if stop_requested() {
                 return Err(Interrupted(format!("at frame {k} of {n}; nothing written")).into());
@@ -120,6 +158,9 @@ pub fn render(
             frames.push(gpu.snapshot(&sim, view, overlays, size)?);
         }
         write_apng(&frames, fps, slow, out)?;
+        if let Some(s) = sound {
+            s.finish()?;
+        }
         println!("{} frames at {fps} fps, {slow}x slow", frames.len());
     } else {
         write_png(&image, out)?;
@@ -166,6 +207,7 @@ pub struct RunArgs {
     pub seed: Option<u64>,
     pub duration: Option<f64>,
     pub plot: Option<PathBuf>,
+    pub sound: Option<PathBuf>,
     pub force: bool,
 }
 
@@ -242,6 +284,9 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
     if let Some(p) = &a.plot {
         plan = plan.file_as("--plot", p, "a PNG picture", &["png"]);
     }
+    if let Some(p) = &a.sound {
+        plan = plan.file_as("--sound", p, "a WAV sound file", &["wav"]);
+    }
     plan.check()?;
     if let Some(s) = a.seed {
         loaded.scene.seed = s;
@@ -298,6 +343,11 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
             println!("{line}");
         }
     };
+    let mut sound = match &a.sound {
+        Some(p) => Some(SoundFile::create(p, loaded.scene.seed, duration)?),
+        None => None,
+    };
+    let mut hear = sound.as_mut().map(|s| |sim: &shisen::Sim| s.hear(sim));
     let bar = progress(duration, "s simulated");
     let wall = std::time::Instant::now(); // reporting only; the model never reads it
     let report = headless::run_watched(
@@ -309,9 +359,13 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
             bar.set_position(t as u64);
             true
         },
+        hear.as_mut().map(|f| f as headless::EachTick),
     )?;
     bar.finish_and_clear();
     drop(sink);
+    if let Some(s) = sound {
+        s.finish()?;
+    }
     let secs = wall.elapsed().as_secs_f64();
     say(format!(
         "scene {} ({}), seed {}: {:.3} s simulated in {} ticks, {:.2} s wall ({:.1}x real time)",

@@ -45,6 +45,8 @@ pub enum Command {
     Replay,
     /// Show or hide the developer's figures (frame time, sim time).
     DevFigures,
+    /// Mute or unmute the sound.
+    Mute,
 }
 
 impl Command {

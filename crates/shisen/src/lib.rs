@@ -10,7 +10,7 @@
 //! |---|---|---|
 //! | `shisen-gaze` | `util`, `anatomy`, `vision`, `behaviour`, `attention`, `oculomotor` | the VH's brain: vision (M1), behaviour, attention, oculomotor (M2-M9); no physics, no graphics |
 //! | `shisen-face` | the face | the muscle-driven face (F1-F8) |
-//! | **`shisen`** | [`physics`], [`sim`], [`scene`], [`tools`] | body plan, rapier world, PD joints; [`Model`] (static) and [`Sim`] (state), the tick as named stages; RON scene files; headless runs, traces, tuning, soak |
+//! | **`shisen`** | [`physics`], [`sim`], [`sound`], [`scene`], [`tools`] | body plan, rapier world, PD joints; [`Model`] (static) and [`Sim`] (state), the tick as named stages; the soundtrack heard from your head; RON scene files; headless runs, traces, tuning, soak |
 //! | `shisen-app` | `render`, `input`, `app`, the `shisen` binary | wgpu renderer, your controls, the sparring window |
 //!
 //! The layers below are re-exported as [`gaze`] and [`face`] (with
@@ -34,6 +34,7 @@
 pub mod physics;
 pub mod scene;
 pub mod sim;
+pub mod sound;
 pub mod tools;
 
 pub use shisen_face as face;

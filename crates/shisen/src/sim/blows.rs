@@ -7,6 +7,7 @@
 //! against a cheek, a guard pushed aside slowly) are touches and count for
 //! nothing.
 
+use glam::DVec3;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -68,6 +69,11 @@ pub struct Blow {
     pub part: &'static str,
     /// Contact impulse over the first [`WINDOW`] s, N s.
     pub impulse: f32,
+    /// When the contact began, s: the impact itself, [`WINDOW`] before
+    /// the tick that reports the blow (what a listener hears, and when).
+    pub started: f64,
+    /// Where the glove was when the contact began, world m.
+    pub at: DVec3,
 }
 
 /// Running totals.
@@ -102,6 +108,7 @@ impl Tally {
 #[derive(Clone, Debug)]
 struct Episode {
     started: f64,
+    at: DVec3,
     last_contact: f64,
     impulse: f32,
     decided: bool,
@@ -234,8 +241,9 @@ impl Blows {
                     Some(_) => {}
                     None => self.touching.push((p.glove, p.kind)),
                 }
-                let e = p.episode.get_or_insert(Episode {
+                let e = p.episode.get_or_insert_with(|| Episode {
                     started: t,
+                    at: world.position(p.glove).as_dvec3(),
                     last_contact: t,
                     impulse: 0.0,
                     // Not this glove's blow: followed, never reported.
@@ -259,6 +267,8 @@ impl Blows {
                         hand: p.hand,
                         part: p.name,
                         impulse: e.impulse,
+                        started: e.started,
+                        at: e.at,
                     };
                     self.tally.add(&blow);
                     out.push(blow);

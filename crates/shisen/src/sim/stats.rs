@@ -226,6 +226,8 @@ mod tests {
             hand,
             part,
             impulse: 10.0,
+            started: 0.0,
+            at: glam::DVec3::ZERO,
         }
     }
 

@@ -3,8 +3,8 @@
 use std::io::Write;
 
 use crate::scene::LoadedScene;
-use crate::sim::DT;
 use crate::sim::expect::{Checker, Verdict};
+use crate::sim::{DT, Sim};
 use crate::tools::trace::TraceWriter;
 
 /// The outcome of a headless run.
@@ -41,19 +41,24 @@ pub fn run(
     trace: Option<&mut dyn Write>,
     every: u64,
 ) -> std::io::Result<Report> {
-    run_watched(scene, duration, trace, every, &mut |_| true)
+    run_watched(scene, duration, trace, every, &mut |_| true, None)
 }
+
+/// Called with the simulation after every tick of a run (a soundtrack
+/// listening, say); an error stops the run.
+pub type EachTick<'a> = &'a mut dyn FnMut(&Sim) -> std::io::Result<()>;
 
 /// [`run`], calling `keep_going(t)` every simulated second; it returns
 /// false to stop the run there (Ctrl-C), with the trace written so far
 /// intact and the report marked interrupted. Every run also stops there
-/// once [`super::request_stop`] was called.
+/// once [`super::request_stop`] was called. `each` sees every tick.
 pub fn run_watched(
     scene: &LoadedScene,
     duration: Option<f64>,
     trace: Option<&mut dyn Write>,
     every: u64,
     keep_going: &mut dyn FnMut(f64) -> bool,
+    mut each: Option<EachTick>,
 ) -> std::io::Result<Report> {
     let duration = duration.unwrap_or(scene.scene.duration);
     let mut sim = scene.sim();
@@ -73,6 +78,9 @@ pub fn run_watched(
         checker.push(s);
         if let Some(w) = writer.as_mut() {
             w.push(s)?;
+        }
+        if let Some(f) = each.as_mut() {
+            f(&sim)?;
         }
     }
     if let Some(w) = writer {
