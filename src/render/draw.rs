@@ -38,6 +38,16 @@ pub enum MeshKey {
     Ring,
     /// The lamps over the ring, unlit ([`super::ring::lamps`]).
     Lamps,
+    /// The hall round the ring, its walls, roof and lighting grid, one
+    /// static mesh lit once ([`super::hall::mesh`]).
+    Hall,
+    /// A group of the crowd, seated or standing ([`super::hall::crowd`]).
+    Crowd {
+        /// Which group, 0 to [`super::hall::GROUPS`] - 1.
+        group: u8,
+        /// On its feet, arms up.
+        standing: bool,
+    },
     /// A left ear ([`super::geometry::ear`]; mirrored for the right).
     Ear,
     /// A tooth's crown: a rounded box of half extent 1
@@ -65,6 +75,8 @@ impl MeshKey {
                 | MeshKey::Capsule { .. }
                 | MeshKey::Ring
                 | MeshKey::Lamps
+                | MeshKey::Hall
+                | MeshKey::Crowd { .. }
         )
     }
 }
@@ -77,7 +89,7 @@ pub const FILL_DIR: Vec3 = Vec3::new(0.9, -0.15, -1.0);
 /// The top light: the lamps over the ring, nearly straight down and a
 /// little toward the VH's back, so its shadows pool under the fighters and
 /// fall a little behind the VH as you see it.
-pub const TOP_DIR: Vec3 = Vec3::new(-0.12, -1.0, -0.3);
+pub const TOP_DIR: Vec3 = Vec3::new(-0.45, -1.0, -0.75);
 /// The top light's strength, against the key's 0.85 and the fill's 0.35.
 pub const TOP_LIGHT: f32 = 0.35;
 
@@ -150,7 +162,7 @@ impl Material {
             Material::Face => ("vs_painted", "fs_face"),
             Material::Body => ("vs_painted", "fs_body"),
             Material::Hair => ("vs_mesh", "fs_hair"),
-            Material::Emissive => ("vs_mesh", "fs_emissive"),
+            Material::Emissive => ("vs_flat", "fs_flat"),
             Material::Scalp => ("vs_mesh", "fs_scalp"),
         }
     }
@@ -166,7 +178,13 @@ impl Material {
             Material::Floor | Material::Emissive | Material::Hair | Material::Eye
         ) && !matches!(
             mesh,
-            MeshKey::Ring | MeshKey::Ear | MeshKey::Tooth | MeshKey::Blob | MeshKey::HairShell
+            MeshKey::Ring
+                | MeshKey::Hall
+                | MeshKey::Crowd { .. }
+                | MeshKey::Ear
+                | MeshKey::Tooth
+                | MeshKey::Blob
+                | MeshKey::HairShell
         )
     }
 }

@@ -301,6 +301,11 @@ impl Frame {
         });
         // The ring and the hall, last (behind the fighters).
         draws.extend(super::ring::draws());
+        draws.extend(super::hall::draws(
+            sim.crowd.excitement as f32,
+            sim.time() as f32,
+            camera.view_proj(),
+        ));
         let mut frame = Frame {
             camera,
             draws,

@@ -17,6 +17,7 @@ mod face_parts;
 mod frame;
 pub mod geometry;
 mod gpu;
+mod hall;
 mod lod;
 mod relay;
 mod ring;

@@ -13,23 +13,20 @@
 
 use glam::{Mat3, Mat4, Quat, Vec3};
 
-use super::draw::{Draw, Material, MeshKey, plain_light};
+use super::draw::{Draw, Material, MeshKey, TOP_DIR, key_fill_light, plain_light};
 use super::geometry::{self, MeshData};
 use shisen::sim::bout;
 
 /// Half the ring's side inside the ropes, m.
-const HALF: f32 = bout::RING_HALF as f32;
+pub(super) const HALF: f32 = bout::RING_HALF as f32;
 /// Centre of the ring, world (midway between the fighters at rest).
-const CENTRE: Vec3 = Vec3::new(
+pub(super) const CENTRE: Vec3 = Vec3::new(
     bout::RING_CENTRE.x as f32,
     bout::RING_CENTRE.y as f32,
     bout::RING_CENTRE.z as f32,
 );
 /// The lamp rig's height above the canvas, m.
 const RIG: f32 = 3.6;
-/// The hall's floor and the seats' colour.
-const HALL: [f32; 4] = [0.035, 0.035, 0.04, 1.0];
-const SEATS: [f32; 4] = [0.03, 0.024, 0.028, 1.0];
 const LAMP: [f32; 4] = [3.0, 2.8, 2.4, 1.0];
 /// Heights of the ropes above the canvas, m.
 const ROPES: [f32; 4] = [0.406, 0.711, 1.016, 1.321];
@@ -38,7 +35,7 @@ const ROPE_R: f32 = 0.02;
 /// Corner post: height above the canvas and radius, m.
 const POST: (f32, f32) = (1.40, 0.045);
 /// The platform's height above the hall's floor, m.
-const PLATFORM: f32 = 1.0;
+pub(super) const PLATFORM: f32 = 1.0;
 /// The apron's width outside the posts, m.
 const APRON: f32 = 0.6;
 
@@ -56,16 +53,17 @@ const PADS: [[f32; 4]; 4] = [
     [0.06, 0.16, 0.70, 1.0],
 ];
 
-/// One piece of the ring: a mesh placed by `model`, in one colour.
-struct Piece {
+/// One piece of the ring (or the hall): a mesh placed by `model`, in one
+/// colour.
+pub(super) struct Piece {
     mesh: fn() -> MeshData,
     capsule: Option<(f32, f32)>,
-    model: Mat4,
+    pub(super) model: Mat4,
     color: [f32; 4],
 }
 
 /// A box of half extents `half` centred at `at` (the cube mesh spans +-1).
-fn cube(at: Vec3, half: Vec3, color: [f32; 4]) -> Piece {
+pub(super) fn cube(at: Vec3, half: Vec3, color: [f32; 4]) -> Piece {
     Piece {
         mesh: geometry::cube,
         capsule: None,
@@ -75,7 +73,7 @@ fn cube(at: Vec3, half: Vec3, color: [f32; 4]) -> Piece {
 }
 
 /// A capsule from `a` to `b` of radius `r`.
-fn bar(a: Vec3, b: Vec3, r: f32, color: [f32; 4]) -> Piece {
+pub(super) fn bar(a: Vec3, b: Vec3, r: f32, color: [f32; 4]) -> Piece {
     let d = b - a;
     let half = (d.length() / 2.0 - r).max(0.001);
     Piece {
@@ -92,7 +90,71 @@ fn bar(a: Vec3, b: Vec3, r: f32, color: [f32; 4]) -> Piece {
 /// The ring but its canvas as one mesh with its colours in the vertices:
 /// static scenery in a single draw call.
 pub fn mesh() -> MeshData {
-    bake(pieces(), true)
+    let mut m = bake(pieces(), true);
+    // The shadows the ropes and posts cast on the canvas from the lamps
+    // (static, so drawn once: the canvas in the key and fill light only).
+    let s = bake_with(rope_shadows(), &|_, _| key_fill_light(Vec3::Y));
+    let base = m.vertices.len() as u32;
+    m.vertices.extend(s.vertices);
+    m.indices.extend(s.indices.iter().map(|i| i + base));
+    m
+}
+
+/// The ropes' and posts' shadows on the canvas: each projected down the
+/// top light ([`TOP_DIR`]) onto it, as a thin dark strip just above it,
+/// clipped to the canvas, widened by the penumbra of lamps a few metres
+/// up.
+fn rope_shadows() -> Vec<Piece> {
+    let side = HALF + APRON;
+    let d = TOP_DIR / -TOP_DIR.y;
+    let onto = |p: Vec3| Vec3::new(p.x + p.y * d.x, CENTRE.y + 0.003, p.z + p.y * d.z);
+    let inside = |p: Vec3| (p.x - CENTRE.x).abs() <= side && (p.z - CENTRE.z).abs() <= side;
+    let mut out = Vec::new();
+    let mut strip = |a: Vec3, b: Vec3, width: f32| {
+        let (a, b) = (onto(a), onto(b));
+        // Clip to the canvas by bisection from each inside end (a strip
+        // outside it falls on the apron's skirt, unseen).
+        let clip = |from: Vec3, to: Vec3| {
+            let (mut lo, mut hi) = (0.0f32, 1.0f32);
+            if inside(to) {
+                return to;
+            }
+            for _ in 0..20 {
+                let mid = (lo + hi) / 2.0;
+                if inside(from.lerp(to, mid)) {
+                    lo = mid
+                } else {
+                    hi = mid
+                }
+            }
+            from.lerp(to, lo)
+        };
+        let (a, b) = match (inside(a), inside(b)) {
+            (true, _) => (a, clip(a, b)),
+            (false, true) => (clip(b, a), b),
+            (false, false) => return,
+        };
+        let len = (b - a).length();
+        if len < 0.01 {
+            return;
+        }
+        let dir = (b - a) / len;
+        let mut p = cube(Vec3::ZERO, Vec3::ONE, CANVAS);
+        p.model = Mat4::from_translation((a + b) / 2.0)
+            * Mat4::from_quat(Quat::from_rotation_arc(Vec3::X, dir))
+            * Mat4::from_scale(Vec3::new(len / 2.0, 0.001, width / 2.0));
+        out.push(p);
+    };
+    let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+        .map(|(x, z)| CENTRE + Vec3::new(x * HALF, 0.0, z * HALF));
+    for (k, &c) in corners.iter().enumerate() {
+        let next = corners[(k + 1) % 4];
+        for h in ROPES {
+            strip(c + Vec3::Y * h, next + Vec3::Y * h, 2.0 * ROPE_R + 0.03 * h);
+        }
+        strip(c, c + Vec3::Y * POST.0, 2.0 * POST.1 + 0.04);
+    }
+    out
 }
 
 /// The pieces as one mesh, in world coordinates, with their colours in
@@ -100,6 +162,16 @@ pub fn mesh() -> MeshData {
 /// under static lights: the software rasteriser shades it at the cost of a
 /// copy; the fighters' shadows fall on the canvas, not on it).
 fn bake(pieces: Vec<Piece>, lit: bool) -> MeshData {
+    if lit {
+        bake_with(pieces, &|_, n| plain_light(n))
+    } else {
+        bake_with(pieces, &|_, _| 1.0)
+    }
+}
+
+/// The pieces as one mesh, in world coordinates, each vertex coloured by
+/// its piece's colour times `light(position, normal)`.
+pub(super) fn bake_with(pieces: Vec<Piece>, light: &dyn Fn(Vec3, Vec3) -> f32) -> MeshData {
     let mut out = MeshData::default();
     for p in pieces {
         let m = match p.capsule {
@@ -111,10 +183,11 @@ fn bake(pieces: Vec<Piece>, lit: bool) -> MeshData {
         let base = out.vertices.len() as u32;
         out.vertices.extend(m.vertices.iter().map(|v| {
             let mut v = *v;
-            v.pos = p.model.transform_point3(Vec3::from(v.pos)).to_array();
+            let at = p.model.transform_point3(Vec3::from(v.pos));
+            v.pos = at.to_array();
             let n = (normal * Vec3::from(v.normal)).normalize();
             v.normal = n.to_array();
-            let light = if lit { plain_light(n) } else { 1.0 };
+            let light = light(at, n);
             v.color = [
                 p.color[0] * light,
                 p.color[1] * light,
@@ -215,33 +288,6 @@ fn pieces() -> Vec<Piece> {
         Vec3::new(side, (PLATFORM - 0.04) / 2.0, side),
         SKIRT,
     ));
-    // The hall's floor round the platform (not under it, where it would
-    // be drawn only to fail the depth test at every pixel of the canvas).
-    for k in 0..4 {
-        let turn = Quat::from_rotation_y(k as f32 * std::f32::consts::FRAC_PI_2);
-        // A pinwheel of four slabs, each from the platform's edge 12 m out.
-        let at = CENTRE + turn * Vec3::new(6.0, -PLATFORM - 0.05, side + 6.0);
-        let mut piece = cube(at, Vec3::ONE, HALL);
-        piece.model = Mat4::from_translation(at)
-            * Mat4::from_quat(turn)
-            * Mat4::from_scale(Vec3::new(side + 6.0, 0.05, 6.0));
-        out.push(piece);
-    }
-    // Banks of seats on four sides, rising away from the ring: five rows
-    // of 0.9 m, each 0.45 m higher, from 2.5 m beyond the apron.
-    for k in 0..4 {
-        let turn = Quat::from_rotation_y(k as f32 * std::f32::consts::FRAC_PI_2);
-        for row in 0..5 {
-            let d = side + 2.5 + row as f32 * 0.9;
-            let h = 0.45 * (row + 1) as f32;
-            let at = CENTRE + turn * Vec3::new(0.0, -PLATFORM + h / 2.0, d);
-            let mut piece = cube(at, Vec3::new(d, h / 2.0, 0.45), SEATS);
-            piece.model = Mat4::from_translation(at)
-                * Mat4::from_quat(turn)
-                * Mat4::from_scale(Vec3::new(d, h / 2.0, 0.45));
-            out.push(piece);
-        }
-    }
     // The lamp rig: a square truss on four columns outside the apron.
     let r = HALF * 0.95;
     let rig = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]

@@ -619,10 +619,26 @@ fn fs_scalp(v: VOut) -> @location(0) vec4<f32> {
 // hairs, m (our choice: a hairline thins out over a few millimetres).
 const HAIRLINE_FRINGE: f32 = 0.004;
 
-// Lamps, and scenery lit once on the CPU: the colour as it is.
+// Lamps, and scenery lit once on the CPU (the ring, the hall and its
+// crowd: much of the picture): the colour as it is, and nothing else
+// carried to the pixel, which a software rasteriser interpolates for
+// every pixel it covers.
+struct FlatOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) color: vec4<f32>,
+};
+
+@vertex
+fn vs_flat(@location(0) pos: vec3<f32>, @location(2) color: vec4<f32>) -> FlatOut {
+    var o: FlatOut;
+    o.clip = g.view_proj * (inst.model * vec4<f32>(pos, 1.0));
+    o.color = vec4<f32>(inst.color.rgb * color.rgb, 1.0);
+    return o;
+}
+
 @fragment
-fn fs_emissive(v: VOut) -> @location(0) vec4<f32> {
-    return vec4<f32>(inst.color.rgb * v.color.rgb, 1.0);
+fn fs_flat(v: FlatOut) -> @location(0) vec4<f32> {
+    return v.color;
 }
 
 struct LineOut {

@@ -215,6 +215,16 @@ impl Renderer {
         r.upload(MeshKey::Ear, &geometry::ear());
         r.upload(MeshKey::Ring, &super::ring::mesh());
         r.upload(MeshKey::Lamps, &super::ring::lamps());
+        r.upload(MeshKey::Hall, &super::hall::mesh());
+        for group in 0..super::hall::GROUPS {
+            for standing in [false, true] {
+                let key = MeshKey::Crowd {
+                    group: group as u8,
+                    standing,
+                };
+                r.upload(key, &super::hall::crowd(group, standing));
+            }
+        }
         // Crowns: boxy, with edges rounded over about a fifth of their size.
         r.upload(MeshKey::Tooth, &geometry::rounded_box(5.0));
         r.upload(MeshKey::Blob, &geometry::rounded_box(2.0));

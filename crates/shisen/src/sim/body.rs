@@ -108,6 +108,7 @@ impl Sim {
             // defends before the count of eight.
             let round = self.round(t);
             self.stats.knocked_down(round);
+            self.crowd.knockdown();
             self.knocked_at = Some(t);
             let b = self
                 .effort

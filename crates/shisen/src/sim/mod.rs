@@ -11,6 +11,7 @@
 pub mod blows;
 mod body;
 pub mod bout;
+pub mod crowd;
 pub mod effort;
 pub mod expect;
 pub mod model;
@@ -119,6 +120,8 @@ pub struct Sim {
     pub effort: Effort,
     /// Punch statistics, per round.
     pub stats: Stats,
+    /// The crowd round the ring (it reacts; nothing depends on it).
+    pub crowd: crowd::Crowd,
     /// The VH's punches and evasions already counted.
     counted: (u32, u32),
     /// The bell rung this tick, if any.
@@ -200,6 +203,7 @@ impl Sim {
             head_touch: Vec::new(),
             effort: Effort::default(),
             stats: Stats::default(),
+            crowd: crowd::Crowd::default(),
             counted: (0, 0),
             bell: None,
             last: None,
@@ -357,8 +361,10 @@ impl Sim {
             fighting: self.model.bout.is_none_or(|b| b.phase_at(t).0.fighting()),
             ..Default::default()
         };
+        self.crowd.tick(self.model.dt);
         for blow in blows {
             self.stats.blow(blow);
+            self.crowd.blow(blow);
             if blow.by == Fighter::Opponent && blow.kind == BlowKind::Hit {
                 let j = f64::from(blow.impulse);
                 if blow.part == "head" {

@@ -161,7 +161,7 @@ pub struct Soundtrack {
     rng: StdRng,
     listener: Listener,
     last: Last,
-    /// The crowd's excitement, 0 calm to 1 on its feet; decays.
+    /// The crowd's excitement (the simulation's, [`crate::sim::crowd`]).
     excitement: f32,
     crowd: Crowd,
     breath: Breath,
@@ -290,7 +290,6 @@ impl Soundtrack {
             let x = synth::impact(rate, &mut self.noise, struck, level);
             self.shoot(x, b.started, b.at);
             if b.kind == BlowKind::Hit {
-                self.excitement = (self.excitement + 0.4 * b.impulse / LOUD_BLOW).min(1.0);
                 if b.impulse > 0.5 * LOUD_BLOW {
                     self.crowd.ooh_level = self.crowd.ooh_level.max(level.min(1.0));
                 }
@@ -312,7 +311,6 @@ impl Soundtrack {
         // A knockdown: the crowd rises, the body lands, the referee counts.
         let pelvis = sim.pelvis() + DVec3::Y * 0.2;
         if s.stance == Stance::Falling && self.last.stance != Stance::Falling {
-            self.excitement = 1.0;
             self.crowd.ooh_level = 1.0;
         }
         if s.stance == Stance::Down && self.last.stance == Stance::Falling {
@@ -344,6 +342,7 @@ impl Soundtrack {
                 }
             }
         }
+        self.excitement = sim.crowd.excitement as f32;
         self.breath.at = s.head - DVec3::Y * 0.08;
         self.breath.rate = sim.effort.breath_rate;
         self.breath.phase = sim.effort.breath;
@@ -419,8 +418,6 @@ impl Soundtrack {
             .iter()
             .map(|s| self.listener.place(s.at).0)
             .collect();
-        // Excitement decays with a time constant of 1.5 s.
-        let fade = (-1.0 / (1.5 * rate)).exp();
         for _ in 0..n {
             let i = self.written;
             let time = i as f32 / rate;
@@ -441,7 +438,6 @@ impl Soundtrack {
                 mix[1] += v;
                 self.crowd.ooh_level *= (-1.0 / (0.9 * rate)).exp();
             }
-            self.excitement *= fade;
             // Applause: claps at random across the hall.
             if f64::from(time) < self.applause.1 && self.noise.unit() < self.applause.0 / rate {
                 let centre = 900.0 + 900.0 * self.noise.unit();
