@@ -86,9 +86,10 @@ impl MeshKey {
 pub const KEY_DIR: Vec3 = Vec3::new(-0.5, -0.8, -1.4);
 /// The fill light's direction of travel, from the other side.
 pub const FILL_DIR: Vec3 = Vec3::new(0.9, -0.15, -1.0);
-/// The top light: the lamps over the ring, nearly straight down and a
-/// little toward the VH's back, so its shadows pool under the fighters and
-/// fall a little behind the VH as you see it.
+/// The top light: the lamps over the ring, from above, behind you and to
+/// your right (about 40 deg off the vertical), so the fighters' and the
+/// ropes' shadows fall ahead and to the left of you, where first person
+/// sees them.
 pub const TOP_DIR: Vec3 = Vec3::new(-0.45, -1.0, -0.75);
 /// The top light's strength, against the key's 0.85 and the fill's 0.35.
 pub const TOP_LIGHT: f32 = 0.35;

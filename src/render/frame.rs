@@ -14,7 +14,7 @@ use shisen_gaze::util::math::{dir_from_yaw_pitch, yaw_pitch_of};
 
 use super::body::{BodyMesh, BodyStyle, LEVELS, Piece, Pose, SKIN, avatar_pose, vh_pose};
 use super::camera::{Camera, View};
-use super::draw::{Draw, Label, LineVertex, Material, MeshKey};
+use super::draw::{Draw, Label, LineVertex, Material, MeshKey, TOP_DIR};
 use super::face_parts::{caruncles, hair_shell, lashes, mouth};
 use super::geometry::Vertex;
 
@@ -154,12 +154,14 @@ pub fn face_offset(plan: &BodyPlan) -> Vec3 {
 
 /// The shadow map's sphere round two fighters whose heads are at `a` and
 /// `b`: centred between them half way up, reaching a body's half width
-/// and its shadow's spread beyond each head (1.3 m).
+/// (0.3 m) and the shadow of a 1.8 m head cast down the top light beyond
+/// each head.
 fn shadow_focus(a: Vec3, b: Vec3) -> (Vec3, f32) {
     let mid = (a + b) / 2.0;
     let centre = Vec3::new(mid.x, 0.8, mid.z);
     let half = Vec3::new(a.x - b.x, 0.0, a.z - b.z).length() / 2.0;
-    (centre, half + 1.3)
+    let spread = 1.8 * Vec3::new(TOP_DIR.x, 0.0, TOP_DIR.z).length() / -TOP_DIR.y;
+    (centre, half + 0.3 + spread)
 }
 
 impl Frame {

@@ -432,16 +432,14 @@ fn threshold(m: usize) -> f32 {
 /// Whether the box `lo`-`hi` (side `k`'s frame) is wholly outside the view
 /// of `view_proj` (all its corners beyond one of the clip planes).
 fn unseen(view_proj: Mat4, k: usize, lo: Vec3, hi: Vec3) -> bool {
-    let corners: Vec<glam::Vec4> = (0..8)
-        .map(|i| {
-            let p = Vec3::new(
-                if i & 1 == 0 { lo.x } else { hi.x },
-                if i & 2 == 0 { lo.y } else { hi.y },
-                if i & 4 == 0 { lo.z } else { hi.z },
-            );
-            view_proj * (CENTRE + side(k) * p).extend(1.0)
-        })
-        .collect();
+    let corners: [glam::Vec4; 8] = std::array::from_fn(|i| {
+        let p = Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        );
+        view_proj * (CENTRE + side(k) * p).extend(1.0)
+    });
     let all = |f: &dyn Fn(&glam::Vec4) -> bool| corners.iter().all(f);
     all(&|c| c.x < -c.w)
         || all(&|c| c.x > c.w)

@@ -620,9 +620,9 @@ fn fs_scalp(v: VOut) -> @location(0) vec4<f32> {
 const HAIRLINE_FRINGE: f32 = 0.004;
 
 // Lamps, and scenery lit once on the CPU (the ring, the hall and its
-// crowd: much of the picture): the colour as it is, and nothing else
-// carried to the pixel, which a software rasteriser interpolates for
-// every pixel it covers.
+// crowd: much of the picture), and the overlay lines: the colour as it
+// is, and nothing else carried to the pixel, which a software rasteriser
+// interpolates for every pixel it covers.
 struct FlatOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) color: vec4<f32>,
@@ -641,20 +641,11 @@ fn fs_flat(v: FlatOut) -> @location(0) vec4<f32> {
     return v.color;
 }
 
-struct LineOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) color: vec4<f32>,
-};
-
 @vertex
-fn vs_line(@location(0) pos: vec3<f32>, @location(1) color: vec4<f32>) -> LineOut {
-    var o: LineOut;
+fn vs_line(@location(0) pos: vec3<f32>, @location(1) color: vec4<f32>) -> FlatOut {
+    var o: FlatOut;
     o.clip = g.view_proj * vec4<f32>(pos, 1.0);
     o.color = color;
     return o;
 }
 
-@fragment
-fn fs_line(v: LineOut) -> @location(0) vec4<f32> {
-    return v.color;
-}

@@ -207,7 +207,7 @@ pub(super) fn scene_pipelines(
     // Overlays are drawn over everything so rays inside the head show.
     let line_pipeline = pipeline(
         "vs_line",
-        "fs_line",
+        "fs_flat",
         &line_attrs,
         size_of::<LineVertex>(),
         wgpu::PrimitiveTopology::LineList,

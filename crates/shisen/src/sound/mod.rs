@@ -413,11 +413,10 @@ impl Soundtrack {
         let breath_gain = self.listener.place(self.breath.at).0;
         let effort =
             ((self.breath.rate - BREATH_REST) / (BREATH_HARD - BREATH_REST)).clamp(0.0, 1.0);
-        let places: Vec<[f32; 2]> = self
+        let places = self
             .speakers
-            .iter()
-            .map(|s| self.listener.place(s.at).0)
-            .collect();
+            .each_ref()
+            .map(|s| self.listener.place(s.at).0);
         for _ in 0..n {
             let i = self.written;
             let time = i as f32 / rate;

@@ -4,8 +4,18 @@ use super::*;
 use crate::scene::LoadedScene;
 use crate::sim::blows::Blow;
 
+/// The samples, the blows and the bells' times of a run.
+type Heard = (Vec<[f32; 2]>, Vec<Blow>, Vec<f64>);
+
+/// `scenes/sound.ron` with its own seed, run once for the tests that
+/// only read it.
+fn heard() -> &'static Heard {
+    static RUN: std::sync::OnceLock<Heard> = std::sync::OnceLock::new();
+    RUN.get_or_init(|| listen(None))
+}
+
 /// Run `scenes/sound.ron` with a soundtrack: the samples and every blow.
-fn listen(seed: Option<u64>) -> (Vec<[f32; 2]>, Vec<Blow>, Vec<f64>) {
+fn listen(seed: Option<u64>) -> Heard {
     let text = include_str!("../../../../scenes/sound.ron");
     let mut scene = LoadedScene::from_str(text, Path::new("sound.ron"), None).unwrap();
     if let Some(s) = seed {
@@ -53,12 +63,13 @@ fn rise(f: &[f32], t: f64) -> Option<f64> {
 /// blow when it was judged (30 ms late) or at a fixed level misses this.
 #[test]
 fn each_blow_is_heard_when_it_lands() {
-    let (x, mut blows, bells) = listen(None);
+    let (x, blows, bells) = heard();
+    let mut blows = blows.clone();
     blows.sort_by(|a, b| a.started.total_cmp(&b.started));
     assert_eq!(x.len(), 20 * RATE as usize, "the whole run, at {RATE} Hz");
     assert!(blows.len() >= 4, "the scene lands blows: {blows:?}");
     assert_eq!(bells.len(), 2, "{bells:?}");
-    let f = frames(&x);
+    let f = frames(x);
     let mut sorted = f.clone();
     sorted.sort_by(f32::total_cmp);
     // The bed: what is always there (the crowd, the breath), the level
@@ -88,7 +99,7 @@ fn each_blow_is_heard_when_it_lands() {
         );
     }
     // The bell is heard at both ends of the round.
-    for t in bells {
+    for &t in bells {
         let k = (t / 0.002) as usize;
         let peak = f[k..k + 25].iter().copied().fold(0.0, f32::max);
         assert!(peak > 3.2 * bed, "the bell at {t}: {peak} vs {bed}");
@@ -99,8 +110,8 @@ fn each_blow_is_heard_when_it_lands() {
 /// A harder blow is louder: the loudness follows the impulse.
 #[test]
 fn a_harder_blow_sounds_louder() {
-    let (x, blows, _) = listen(None);
-    let f = frames(&x);
+    let (x, blows, _) = heard();
+    let f = frames(x);
     let peak = |b: &Blow| {
         let k = (b.started / 0.002) as usize;
         f[k..k + 15].iter().copied().fold(0.0, f32::max)
@@ -126,11 +137,11 @@ fn a_harder_blow_sounds_louder() {
 /// Same scene and seed, same samples; another seed, another crowd.
 #[test]
 fn the_soundtrack_is_deterministic() {
-    let (a, _, _) = listen(None);
+    let (a, _, _) = heard();
     let (b, _, _) = listen(None);
-    assert!(a == b);
+    assert!(*a == b);
     let (c, _, _) = listen(Some(99));
-    assert!(a != c);
+    assert!(*a != c);
 }
 
 /// A sound on your right is louder and earlier in the right ear, by
