@@ -8,6 +8,8 @@
 //! The interpreter lock is released while the simulation steps, so Python
 //! threads stepping different simulations run in parallel.
 
+mod arena;
+
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
@@ -279,6 +281,17 @@ impl Sim {
     }
 }
 
+/// A blow tally as a dict (its field names).
+fn tally_dict<'py>(py: Python<'py>, t: &shisen::sim::blows::Tally) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("vh_hits", t.vh_hits)?;
+    d.set_item("opponent_hits", t.opponent_hits)?;
+    d.set_item("vh_blocked", t.vh_blocked)?;
+    d.set_item("opponent_blocked", t.opponent_blocked)?;
+    d.set_item("opponent_guarded", t.opponent_guarded)?;
+    Ok(d)
+}
+
 fn vec3(v: DVec3) -> (f64, f64, f64) {
     (v.x, v.y, v.z)
 }
@@ -351,14 +364,7 @@ impl Sim {
 
     /// Blows so far, both ways: hits and blocks of each fighter.
     fn tally<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let t = self.inner.tally();
-        let d = PyDict::new(py);
-        d.set_item("vh_hits", t.vh_hits)?;
-        d.set_item("opponent_hits", t.opponent_hits)?;
-        d.set_item("vh_blocked", t.vh_blocked)?;
-        d.set_item("opponent_blocked", t.opponent_blocked)?;
-        d.set_item("opponent_guarded", t.opponent_guarded)?;
-        Ok(d)
+        tally_dict(py, &self.inner.tally())
     }
 
     /// World positions (x, y, z), m, of the VH's head, eyes midpoint and
@@ -572,6 +578,11 @@ fn columns() -> Vec<&'static str> {
 fn _shisen(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Scene>()?;
     m.add_class::<Sim>()?;
+    m.add_class::<arena::Arena>()?;
+    m.add("VH_COMMANDS", arena::COMMANDS.to_vec())?;
+    m.add("VH_LOOKS", arena::LOOKS.to_vec())?;
+    m.add("OPPONENT_OBS", arena::OPPONENT_OBS)?;
+    m.add("VH_OBS", arena::VH_OBS)?;
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add_function(wrap_pyfunction!(test, m)?)?;
     m.add_function(wrap_pyfunction!(fidelity, m)?)?;

@@ -4,6 +4,7 @@
 //! body plan's inverse kinematics) and, in [`body`], how its body moves:
 //! evasions, footwork, the trunk's turn in a punch.
 
+mod agent;
 mod body;
 mod params;
 mod plan;
@@ -20,6 +21,7 @@ use serde::{Deserialize, Serialize};
 use crate::personality::Personality;
 use crate::target::{BodyId, Spot, TargetId};
 use crate::vision::Seen;
+pub use agent::{Command, Control, Look};
 use body::BodyPlan;
 pub use body::{Evasion, Posture, choose_evasion};
 pub use params::BehaviourParams;
@@ -142,6 +144,12 @@ pub struct Behaviour {
     corner: Option<(DVec3, DVec3)>,
     /// Staggered by a blow (neither attacking nor defending) until, s.
     staggered_until: f64,
+    /// Who decides: the planner or an outside agent ([`agent`]).
+    control: Control,
+    /// The agent's pending decision.
+    command: Command,
+    /// Where the agent asks the gaze to go.
+    look: Look,
 }
 
 impl Default for Behaviour {
@@ -165,6 +173,9 @@ impl Behaviour {
             drop: 0.0,
             corner: None,
             staggered_until: f64::NEG_INFINITY,
+            control: Control::Own,
+            command: Command::Nothing,
+            look: Look::Own,
         }
     }
 
@@ -277,13 +288,19 @@ impl Behaviour {
             return face;
         }
         if t < self.staggered_until {
+            self.command = Command::Nothing;
             return face;
         }
         if !matches!(self.plan, Plan::Attack { thrown: true, .. }) {
             self.body.keep_range(p, opponent_head, t);
         }
-        self.consider_evasion(p, pers, view, opponent_head, t, rng);
-        self.meet_threat(p, view, t);
+        let own = self.control == Control::Own;
+        if own {
+            self.consider_evasion(p, pers, view, opponent_head, t, rng);
+            self.meet_threat(p, view, t);
+        } else {
+            self.obey(p, pers, view, t, rng);
+        }
         // The plan under way: the action's request, or `None` once it is
         // over; then, idle, maybe an attack.
         let request = match self.plan.clone() {
@@ -303,7 +320,15 @@ impl Behaviour {
             } => self.attacking((hand, target, decided, looked, thrown), p, view, t),
             Plan::Idle => None,
         };
-        match request.or_else(|| self.idle(p, pers, view, t, dt, rng)) {
+        let request = if own {
+            request.or_else(|| self.idle(p, pers, view, t, dt, rng))
+        } else {
+            request
+        };
+        if let Some(look) = self.agent_look(pers, view) {
+            return look;
+        }
+        match request {
             Some(request) => strongest(request, face),
             None => face,
         }

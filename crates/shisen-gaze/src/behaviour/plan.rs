@@ -138,11 +138,13 @@ impl Behaviour {
         rng: &mut impl Rng,
     ) -> Option<TopDown> {
         if t >= until {
+            let own = self.control == super::Control::Own;
             self.body.recover(t);
             self.plan = Plan::Idle;
             // A strong boxer counters out of a slip, with the hand on the
-            // side it slipped to.
-            if p.attacks && kind == Evasion::Slip && rng.random::<f64>() < pers.counter {
+            // side it slipped to (the planner's decision: an agent in its
+            // place decides its own counters).
+            if own && p.attacks && kind == Evasion::Slip && rng.random::<f64>() < pers.counter {
                 let right = self.body.posture(t).waist.z > 0.0;
                 return Some(self.start_attack((usize::from(right), false), p, pers, view, t, rng));
             }
@@ -263,7 +265,7 @@ impl Behaviour {
     /// Decide to punch with glove `hand` at the opponent's head or body
     /// (`to_body`), with the aim's random spread; the eyes go to the target
     /// first. The attack's request (the target).
-    fn start_attack(
+    pub(super) fn start_attack(
         &mut self,
         (hand, to_body): (usize, bool),
         p: &BehaviourParams,

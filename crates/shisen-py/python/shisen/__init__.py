@@ -13,7 +13,10 @@ person would. From Python you can:
 * run scene files as ``shisen test`` does (:func:`test`), studies
   (:func:`study`, :func:`study_frame`) and the fidelity battery
   (:func:`fidelity`);
-* train a policy as the VH's opponent: :mod:`shisen.env` (Gymnasium).
+* train a policy as the VH's opponent: :mod:`shisen.env` (Gymnasium, and a
+  native vector env stepping bouts in Rust threads), :mod:`shisen.sb3`
+  (Stable-Baselines3's vector env); or the VH's decisions too, against it:
+  :mod:`shisen.multiagent` (PettingZoo, two agents).
 
 The interpreter lock is released while a simulation steps, so threads
 stepping different simulations run in parallel.
