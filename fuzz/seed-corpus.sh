@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Seed the fuzz corpus from the project's own scene, gains, muscle-database
-# and emotion-script files, then fuzz: `fuzz/seed-corpus.sh && cargo +nightly fuzz run scene`.
+# and emotion-script files (the corpus is kept in the repository), then fuzz:
+# `cd fuzz && RUSTC_BOOTSTRAP=1 cargo fuzz run --sanitizer none scene corpus/scene`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mkdir -p fuzz/corpus/scene

@@ -188,3 +188,13 @@ fn a_study_that_varies_a_field_twice_is_refused_at_the_second() {
     assert!(err.contains("study.ron:3:"), "{err}");
     assert!(err.contains("varied twice"), "{err}");
 }
+
+#[test]
+fn a_study_with_a_value_out_of_range_writes_nothing_to_block_its_rerun() {
+    let err = refused_study(
+        "study_range",
+        "Study(scene: \"base.ron\", vary: [\n  (field: \"vh.personality.a_face\", values: [1.0, 200.0]),\n])",
+    );
+    assert!(err.contains("study.ron:2:"), "{err}");
+    assert!(err.contains("must be <= 100, got 200"), "{err}");
+}

@@ -103,6 +103,9 @@ pub fn study_cmd(study: &Path, out: &Path, jobs: usize, shard: Shard) -> Result<
         plan = plan.input(&f);
     }
     plan.check()?;
+    // A run the study cannot make refuses it before its results file is
+    // made (a header-only file would block the corrected re-run).
+    s.check(&s.runs_of(shard))?;
     let results = ResultsFile::open(out, &s.settings(shard), &s.header())?;
     let resumed = (0..s.runs.len())
         .filter(|&k| shard.contains(k) && results.has(k))

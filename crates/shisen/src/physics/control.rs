@@ -30,7 +30,7 @@ use glam::{DVec2, Mat3, Quat, Vec3};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use crate::physics::body::Group;
+use crate::physics::body::{Group, Limits};
 use shisen_gaze::util::math::JointAngles;
 use shisen_gaze::util::ron::{LoadError, parse_ron};
 
@@ -236,6 +236,41 @@ pub fn joint_errors(target: &JointTarget, s: &JointState) -> (Vec3, Vec3) {
     (e, w_err)
 }
 
+/// How much stiffer than the joint's own PD the soft limit past its range
+/// is (spring and damper alike). It stands for the ligaments and capsule
+/// that stop a joint beyond its active range; it is a model of their
+/// effect (an excursion that stays within a few degrees under a blow), not
+/// a measured tissue stiffness.
+pub const END_RANGE_FACTOR: f64 = 10.0;
+
+/// The soft limit of a joint with `limits` (degrees): past its range, a
+/// stable-PD spring-damper [`END_RANGE_FACTOR`] times the group's gains
+/// pulls it back to the nearest angle inside (world-frame torque on the
+/// child); zero inside the range.
+pub fn end_range_torque(g: &JointGains, limits: &Limits, s: &JointState, dt: f32) -> Vec3 {
+    let a = JointAngles::from_quat(s.parent_rot.inverse() * s.child_rot);
+    let clamp =
+        |v: f64, r: [f32; 2]| v.clamp(f64::from(r[0]).to_radians(), f64::from(r[1]).to_radians());
+    let inside = JointAngles {
+        yaw: clamp(a.yaw, limits.yaw),
+        pitch: clamp(a.pitch, limits.pitch),
+        roll: clamp(a.roll, limits.roll),
+    };
+    if inside == a {
+        return Vec3::ZERO;
+    }
+    let stop = JointGains {
+        kp: g.kp * END_RANGE_FACTOR,
+        kd: g.kd * END_RANGE_FACTOR,
+        feedforward: 0.0,
+    };
+    let target = JointTarget {
+        rotation: inside.to_quat(),
+        ..JointTarget::default()
+    };
+    pd_feedback(&stop, &target, s, dt)
+}
+
 /// The feed-forward part of [`pd_torque`]: `ff I a_ref`, world frame.
 pub fn feedforward(g: &JointGains, target: &JointTarget, s: &JointState) -> Vec3 {
     g.feedforward as f32 * (s.inertia * (s.parent_rot * target.acceleration))
@@ -286,6 +321,33 @@ mod tests {
             (tau + Vec3::X).length() < 1e-5,
             "pure damping at target: {tau}"
         );
+    }
+
+    #[test]
+    fn the_soft_limit_acts_only_past_the_range_and_pulls_back_inside() {
+        let g = JointGains {
+            kp: 10.0,
+            kd: 1.0,
+            feedforward: 0.0,
+        };
+        let limits = Limits {
+            yaw: [-40.0, 40.0],
+            pitch: [-30.0, 30.0],
+            roll: [-10.0, 10.0],
+        };
+        let at = |yaw_deg: f32| JointState {
+            parent_rot: Quat::IDENTITY,
+            child_rot: Quat::from_rotation_y(yaw_deg.to_radians()),
+            rel_angvel: Vec3::ZERO,
+            inertia: Mat3::IDENTITY,
+        };
+        assert_eq!(end_range_torque(&g, &limits, &at(39.0), 0.0), Vec3::ZERO);
+        // 5 deg past the left stop: back toward it, ten times the PD's pull.
+        let tau = end_range_torque(&g, &limits, &at(45.0), 0.0);
+        let expected = -Vec3::Y * (10.0 * 10.0 * 5f32.to_radians());
+        assert!((tau - expected).length() < 1e-3, "{tau} vs {expected}");
+        let tau = end_range_torque(&g, &limits, &at(-45.0), 0.0);
+        assert!(tau.y > 0.0 && tau.x.abs() < 1e-6, "{tau}");
     }
 
     #[test]

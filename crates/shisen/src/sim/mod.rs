@@ -267,7 +267,10 @@ impl Sim {
         }
         self.world.reset_vh();
         self.oculomotor = Oculomotor::new(&self.model.params.oculomotor, &mut self.rng.oculomotor);
+        // Who decides survives the reset (an agent keeps the VH).
+        let control = self.behaviour.control();
         self.behaviour = Behaviour::new();
+        self.behaviour.take_over(control);
         for t in &mut self.targets {
             *t = JointTarget::default();
         }

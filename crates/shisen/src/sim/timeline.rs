@@ -2,6 +2,7 @@
 //! overrides at given times (scene `timeline`, live input), and how each
 //! event changes the running simulation.
 
+use std::collections::VecDeque;
 use std::path::PathBuf;
 
 use glam::{DVec2, DVec3};
@@ -407,8 +408,9 @@ fn part_body(world: &World, part: &Part) -> BodyId {
 /// neck motion).
 #[derive(Clone, Debug)]
 pub struct Timeline {
-    events: Vec<Event>,
-    next: usize,
+    /// The events still to come, in time order (a run's past events are
+    /// dropped: a long session's pushed input keeps no memory).
+    events: VecDeque<Event>,
     /// Scripted bodies: body, track, its last two positions.
     tracks: Vec<(BodyId, Track, [DVec3; 2])>,
     /// The gaze override in force, if any.
@@ -432,8 +434,7 @@ impl Timeline {
         let mut events = events.to_vec();
         events.sort_by(|a, b| a.at.total_cmp(&b.at)); // stable: file order at equal times
         Timeline {
-            events,
-            next: 0,
+            events: events.into(),
             tracks: bodies
                 .iter()
                 .map(|&(b, p)| (b, Track::new(p), [p; 2]))
@@ -451,8 +452,13 @@ impl Timeline {
     /// scheduled for its time, exactly as if it had been appended to the
     /// scene's timeline. Events in the past run at the next tick.
     pub fn push(&mut self, ev: Event) {
-        let at = self.next + self.events[self.next..].partition_point(|e| e.at <= ev.at);
+        let at = self.events.partition_point(|e| e.at <= ev.at);
         self.events.insert(at, ev);
+    }
+
+    /// Events still to come.
+    pub fn pending(&self) -> usize {
+        self.events.len()
     }
 
     /// The kinematic track of a body, if it has one.
@@ -501,9 +507,11 @@ impl Timeline {
     pub fn run(&mut self, t: f64, world: &World, face: &Face, face_state: &mut FaceState) {
         self.thrown.clear();
         self.pushes.clear();
-        while self.next < self.events.len() && self.events[self.next].at <= t + 1e-12 {
-            let ev = self.events[self.next].clone();
-            self.next += 1;
+        while let Some(ev) = self.events.pop_front() {
+            if ev.at > t + 1e-12 {
+                self.events.push_front(ev);
+                break;
+            }
             match ev.action {
                 Action::Move { part, to, duration } => {
                     let b = part_body(world, &part);
@@ -668,5 +676,26 @@ mod tests {
         assert!((s.command(1.3).angles.x - amp).abs() < 1e-12, "held");
         let peak = s.command(1.075).rates.x;
         assert!((peak - 1.875 * amp / 0.15).abs() < 1e-9, "{peak}");
+    }
+
+    /// Input pushed every tick for an hour keeps no memory: run events
+    /// are dropped (a soak or a learning run pushes millions).
+    #[test]
+    fn run_events_are_not_kept() {
+        let mut sim = crate::scene::LoadedScene::default_scene().sim();
+        for k in 0..3000 {
+            let to = DVec3::new(0.1 * (k % 3) as f64, 1.5, 0.7);
+            sim.push_event(Event {
+                at: sim.time(),
+                action: Action::Move {
+                    part: Part::LeftGlove,
+                    to,
+                    duration: 0.02,
+                },
+            });
+            sim.step();
+        }
+        // Only the scene's own events still to come are left.
+        assert!(sim.timeline.pending() <= 6, "{}", sim.timeline.pending());
     }
 }

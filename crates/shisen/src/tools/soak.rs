@@ -244,7 +244,7 @@ fn check(s: &Sample, sim: &Sim, failures: &mut Vec<String>) -> (f64, f64) {
         };
         let e = excess(a.yaw, l.yaw).max(excess(a.pitch, l.pitch));
         worst = worst.max(e);
-        if e > 2.0 * HARD_STOP_MARGIN_DEG as f64 + 5.0 {
+        if e > MAX_EXCURSION_DEG {
             let name = sim.world.plan.segments[i.index()].name;
             fail(format!(
                 "{name} beyond its range by {e:.1} deg (the body {})",
@@ -258,6 +258,15 @@ fn check(s: &Sample, sim: &Sim, failures: &mut Vec<String>) -> (f64, f64) {
     }
     (worst, gap_mm)
 }
+
+/// The farthest an eye or the neck may go past its range, deg: the soft
+/// limits (`physics::control::end_range_torque`) hold a blow within the
+/// hard stop's margin (ten-minute soaks: 2.6 deg driven, 3.2 balanced;
+/// 12.8 over an hour before the soft limits).
+const MAX_EXCURSION_DEG: f64 = HARD_STOP_MARGIN_DEG as f64;
+
+/// The most resident memory may grow past the warm-up, KiB.
+const MAX_GROWTH_KIB: u64 = 1024;
 
 /// A joint opening wider than this is a solver failure, mm: a segment
 /// visibly detaching (the eyeball is 22 mm across). Under the hardest
@@ -314,9 +323,11 @@ pub fn soak(
         }
     }
     r.rss_kib.1 = rss_kib();
-    // Allow allocator noise; a leak of a few bytes per tick over an hour
-    // would be tens of MiB.
-    if r.rss_kib.0 > 0 && r.rss_kib.1 > r.rss_kib.0 + 16 * 1024 {
+    // Nothing the simulation keeps grows with time (past events are
+    // dropped, statistics are counts): past the warm-up, resident memory
+    // moves by the allocator's settling only, under a MiB however long the
+    // run (a leak of 30 bytes a tick is 100 MiB over ten hours).
+    if r.rss_kib.0 > 0 && r.rss_kib.1 > r.rss_kib.0 + MAX_GROWTH_KIB {
         r.failures.push(format!(
             "memory grew from {} to {} KiB",
             r.rss_kib.0, r.rss_kib.1

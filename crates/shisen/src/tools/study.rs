@@ -340,6 +340,22 @@ impl LoadedStudy {
         })
     }
 
+    /// Check the scenes of runs `runs` (the first bad one's error): a
+    /// study is refused whole before anything is written.
+    pub fn check(&self, runs: &[usize]) -> Result<(), LoadError> {
+        for &k in runs {
+            self.scene(k)?;
+        }
+        Ok(())
+    }
+
+    /// The runs of `shard`.
+    pub fn runs_of(&self, shard: Shard) -> Vec<usize> {
+        (0..self.runs.len())
+            .filter(|&k| shard.contains(k))
+            .collect()
+    }
+
     /// Run this `shard` of the study on `jobs` threads into `results`
     /// (runs already there are skipped), with a progress bar. Returns the
     /// number of runs made now.
@@ -350,9 +366,7 @@ impl LoadedStudy {
         // Every run's scene is checked before any simulation starts (and
         // made again when its run starts: a study's scenes are not all
         // held at once).
-        for &k in &todo {
-            self.scene(k)?;
-        }
+        self.check(&todo)?;
         let bar = parallel::bar(todo.len() as u64, "runs");
         let made = std::sync::atomic::AtomicUsize::new(0);
         parallel::pool(jobs).install(|| {

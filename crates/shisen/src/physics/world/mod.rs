@@ -13,7 +13,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::physics::body::{BodyPlan, Group, JointKind, OpponentPart, Seg, Shape};
-use crate::physics::control::{Gains, JointState, JointTarget, pd_torque};
+use crate::physics::control::{Gains, JointState, JointTarget, end_range_torque, pd_torque};
 mod build;
 mod soles;
 pub use soles::SoleSlip;
@@ -441,10 +441,16 @@ impl World {
             };
             let state = self.joint_state(s);
             let target = &targets[s.index()];
+            let g = gains.group(group);
             let mut tau = match group {
-                Group::Neck => neck_torque(gains.group(group), neck.0, neck.1, target, &state, dt),
-                _ => pd_torque(gains.group(group), target, &state, dt),
+                Group::Neck => neck_torque(g, neck.0, neck.1, target, &state, dt),
+                _ => pd_torque(g, target, &state, dt),
             };
+            // The eyes' and the neck's soft limits (their targets stay
+            // inside; blows can carry them past).
+            if let (Group::Eye | Group::Neck, Some(limits)) = (group, &segm.limits) {
+                tau += end_range_torque(g, limits, &state, dt);
+            }
             if gains.gravity_compensation {
                 tau += self.gravity_torque(s, root_accel);
             }
