@@ -282,6 +282,10 @@ def main():
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--out", default="fuzz-out")
     a = ap.parse_args()
+    # Cases run in scratch folders: the binary by its absolute path.
+    a.bin = str(Path(a.bin).resolve())
+    if not os.access(a.bin, os.X_OK):
+        ap.error(f"--bin: {a.bin}: not an executable (build it first)")
     out = Path(a.out)
     (out / "failures").mkdir(parents=True, exist_ok=True)
     rng = random.Random(a.seed)

@@ -244,9 +244,11 @@ pub fn joint_errors(target: &JointTarget, s: &JointState) -> (Vec3, Vec3) {
 pub const END_RANGE_FACTOR: f64 = 10.0;
 
 /// The soft limit of a joint with `limits` (degrees): past its range, a
-/// stable-PD spring-damper [`END_RANGE_FACTOR`] times the group's gains
-/// pulls it back to the nearest angle inside (world-frame torque on the
-/// child); zero inside the range.
+/// spring-damper [`END_RANGE_FACTOR`] times the group's gains, along the
+/// axis that leads back to the nearest angle inside only (the joint's own
+/// motion within its range is untouched), in the stable-PD form of
+/// [`pd_feedback`] on the inertia about that axis. World-frame torque on
+/// the child; zero inside the range.
 pub fn end_range_torque(g: &JointGains, limits: &Limits, s: &JointState, dt: f32) -> Vec3 {
     let a = JointAngles::from_quat(s.parent_rot.inverse() * s.child_rot);
     let clamp =
@@ -254,21 +256,41 @@ pub fn end_range_torque(g: &JointGains, limits: &Limits, s: &JointState, dt: f32
     let inside = JointAngles {
         yaw: clamp(a.yaw, limits.yaw),
         pitch: clamp(a.pitch, limits.pitch),
-        roll: clamp(a.roll, limits.roll),
+        // A joint with no roll range (the eyes: torsion is the PD's to
+        // hold at zero) has no roll stop.
+        roll: if limits.roll[0] < limits.roll[1] {
+            clamp(a.roll, limits.roll)
+        } else {
+            a.roll
+        },
     };
     if inside == a {
         return Vec3::ZERO;
     }
-    let stop = JointGains {
-        kp: g.kp * END_RANGE_FACTOR,
-        kd: g.kd * END_RANGE_FACTOR,
-        feedforward: 0.0,
-    };
     let target = JointTarget {
         rotation: inside.to_quat(),
         ..JointTarget::default()
     };
-    pd_feedback(&stop, &target, s, dt)
+    let (e, _) = joint_errors(&target, s);
+    let angle = e.length();
+    if angle <= f32::EPSILON {
+        return Vec3::ZERO;
+    }
+    let axis = e / angle;
+    let (k, c) = (
+        (g.kp * END_RANGE_FACTOR) as f32,
+        (g.kd * END_RANGE_FACTOR) as f32,
+    );
+    // Speed back toward the range (negative: still going out).
+    let w = s.rel_angvel.dot(axis);
+    let inertia = axis.dot(s.inertia * axis);
+    let pd = k * (angle - dt * w) - c * w;
+    let implicit = inertia + c * dt;
+    if inertia > f32::MIN_POSITIVE && implicit > f32::MIN_POSITIVE {
+        axis * (inertia / implicit * pd)
+    } else {
+        axis * pd
+    }
 }
 
 /// The feed-forward part of [`pd_torque`]: `ff I a_ref`, world frame.
