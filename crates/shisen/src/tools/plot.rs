@@ -185,6 +185,8 @@ pub fn chart(
 
 /// A parsed trace CSV: column name -> values (numbers where they parse).
 pub struct TraceTable {
+    /// The file it came from (for messages).
+    file: String,
     header: Vec<String>,
     rows: Vec<Vec<String>>,
     index: HashMap<String, usize>,
@@ -225,6 +227,7 @@ impl TraceTable {
             rows.push(r.map_err(bad)?.iter().map(String::from).collect());
         }
         Ok(TraceTable {
+            file: file.to_string(),
             header,
             rows,
             index,
@@ -235,7 +238,8 @@ impl TraceTable {
     pub fn column(&self, name: &str) -> Result<Vec<f64>> {
         let i = *self.index.get(name).with_context(|| {
             format!(
-                "trace has no column `{name}` (columns: {})",
+                "{}:1: the trace has no column `{name}` (its columns: {})",
+                self.file,
                 self.header.join(", ")
             )
         })?;
@@ -251,7 +255,7 @@ impl TraceTable {
         let i = *self
             .index
             .get(name)
-            .with_context(|| format!("trace has no column `{name}`"))?;
+            .with_context(|| format!("{}:1: the trace has no column `{name}`", self.file))?;
         Ok(self.rows.iter().map(|r| r[i].as_str()).collect())
     }
 }
