@@ -19,7 +19,6 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::plan::Plan;
-use super::reach::Reach;
 use super::threat::aimed_glove;
 use super::{Behaviour, BehaviourParams, Evasion, OpponentView, TopDown};
 use crate::personality::Personality;
@@ -179,23 +178,7 @@ impl Behaviour {
                 (threat, head + toward * COVER_AHEAD + side, COVER_TIME)
             }
         };
-        let from = self.glove(hand, t);
-        self.reaches[hand] = Some(Reach {
-            from,
-            to: point,
-            t0: t + p.guard_reaction,
-            dur,
-            back: false,
-        });
-        if let Plan::Evade { .. } = self.plan {
-            self.body.recover(t);
-        }
-        self.plan = Plan::Guard {
-            threat,
-            hand,
-            point,
-            until: t + p.guard_hold,
-        };
+        self.raise_guard((threat, hand, point, dur), p, t);
     }
 
     /// The agent's gaze request, if it asks for one.

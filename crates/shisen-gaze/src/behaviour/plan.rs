@@ -99,22 +99,9 @@ impl Behaviour {
             Plan::Guard { threat: th, .. } | Plan::Evade { threat: th, .. } => th == threat,
             _ => false,
         };
-        if !met || matches!(self.plan, Plan::Guard { .. }) {
-            if !met {
-                let from = self.glove(hand, t);
-                // The glove moves once the reaction time is over (the
-                // reach holds its start point until t0).
-                self.reaches[hand] = Some(Reach {
-                    from,
-                    to: point,
-                    t0: t + p.guard_reaction,
-                    dur: (0.3 * ttc).max(0.05),
-                    back: false,
-                });
-                if let Plan::Evade { .. } = self.plan {
-                    self.body.recover(t);
-                }
-            }
+        if !met {
+            self.raise_guard((threat, hand, point, (0.3 * ttc).max(0.05)), p, t);
+        } else if matches!(self.plan, Plan::Guard { .. }) {
             self.plan = Plan::Guard {
                 threat,
                 hand,
@@ -122,6 +109,34 @@ impl Behaviour {
                 until: t + p.guard_hold,
             };
         }
+    }
+
+    /// Glove `hand` to `point` against `threat`, taking `dur` s once the
+    /// reaction time is over (the reach holds its start point until then);
+    /// an evasion under way is given up; held `guard_hold`.
+    pub(super) fn raise_guard(
+        &mut self,
+        (threat, hand, point, dur): (BodyId, usize, DVec3, f64),
+        p: &BehaviourParams,
+        t: f64,
+    ) {
+        let from = self.glove(hand, t);
+        self.reaches[hand] = Some(Reach {
+            from,
+            to: point,
+            t0: t + p.guard_reaction,
+            dur,
+            back: false,
+        });
+        if let Plan::Evade { .. } = self.plan {
+            self.body.recover(t);
+        }
+        self.plan = Plan::Guard {
+            threat,
+            hand,
+            point,
+            until: t + p.guard_hold,
+        };
     }
 
     /// An evasion of `threat` of `kind` under way until `until`: the gaze

@@ -98,11 +98,23 @@ def _scene(scene: Optional[Union[str, Scene]]) -> Scene:
     return ring() if scene is None else Scene.load(scene)
 
 
-def _check(control_dt: float, episode_seconds: float) -> None:
+def _check(control_dt: float, episode_seconds: float, num_envs: int = 1) -> None:
+    """The environments' shared arguments, checked (ValueError naming one)."""
+    if not 1 <= num_envs <= 4096:
+        raise ValueError(f"num_envs: 1-4096, got {num_envs}")
     if not 0.001 <= control_dt <= 1.0:
         raise ValueError(f"control_dt: 0.001-1 s (one tick to a second), got {control_dt}")
     if not 0.0 < episode_seconds <= 3600.0:
         raise ValueError(f"episode_seconds: 0-3600 s, got {episode_seconds}")
+
+
+def reward(landed, taken, hit_reward: float, taken_penalty: float):
+    """The opponent's reward for hits `landed` and `taken` (numbers or
+    arrays): ``hit_reward * landed - taken_penalty * taken``; the VH's is
+    the same with the two swapped."""
+    return hit_reward * np.asarray(landed, dtype=np.float64) - taken_penalty * np.asarray(
+        taken, dtype=np.float64
+    )
 
 
 def opponent_spaces() -> tuple[spaces.Box, spaces.Box]:
@@ -146,11 +158,11 @@ class BoxingEnv(gym.Env):
             raise RuntimeError("call reset() first")
         a = np.asarray(action, dtype=np.float64).reshape(1, 9)
         obs, _, landed, taken = self.arena.step(a)
-        reward = self.hit_reward * int(landed[0]) - self.taken_penalty * int(taken[0])
+        r = reward(landed[0], taken[0], self.hit_reward, self.taken_penalty)
         time = float(self.arena.times()[0])
         truncated = time >= self.episode_seconds - 1e-9
         info = {"landed": int(landed[0]), "taken": int(taken[0]), "time": time}
-        return np.clip(obs[0], -5.0, 5.0), float(reward), False, truncated, info
+        return np.clip(obs[0], -5.0, 5.0), float(r), False, truncated, info
 
     def tally(self) -> dict:
         """Blows so far, both ways (``Sim.tally``)."""
@@ -177,9 +189,7 @@ class BoxingVectorEnv(gym.vector.VectorEnv):
         hit_reward: float = 1.0,
         taken_penalty: float = 1.0,
     ):
-        if not 1 <= num_envs <= 4096:
-            raise ValueError(f"num_envs: 1-4096, got {num_envs}")
-        _check(control_dt, episode_seconds)
+        _check(control_dt, episode_seconds, num_envs)
         self.scene = _scene(scene)
         self.num_envs = num_envs
         self.control_dt = control_dt
@@ -223,7 +233,7 @@ class BoxingVectorEnv(gym.vector.VectorEnv):
             self.arena.reset(int(i), int(self._rng.integers(0, 2**31)))
         a = np.asarray(actions, dtype=np.float64).reshape(self.num_envs, 9)
         obs, _, landed, taken = self.arena.step(a, None, hold.tolist())
-        rewards = self.hit_reward * landed - self.taken_penalty * taken.astype(np.float64)
+        rewards = reward(landed, taken, self.hit_reward, self.taken_penalty)
         truncated = (self.arena.times() >= self.episode_seconds - 1e-9) & ~hold
         self._done = truncated.copy()
         terminated = np.zeros(self.num_envs, dtype=bool)

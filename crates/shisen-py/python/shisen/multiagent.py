@@ -60,7 +60,7 @@ from pettingzoo import ParallelEnv
 
 from . import Scene
 from ._shisen import VH_COMMANDS, VH_LOOKS, VH_OBS, Arena
-from .env import _check, _scene, opponent_spaces
+from .env import _check, _scene, opponent_spaces, reward
 
 #: The bound of the VH's observation (directions, m and m/s); values
 #: beyond are clipped (a glove faster than 50 m/s is not a punch).
@@ -133,8 +133,8 @@ class BoxingParallelEnv(ParallelEnv):
         opp, vh, landed, taken = self.arena.step(a, v)
         landed, taken = int(landed[0]), int(taken[0])
         rewards = {
-            "opponent": float(self.hit_reward * landed - self.taken_penalty * taken),
-            "vh": float(self.hit_reward * taken - self.taken_penalty * landed),
+            "opponent": float(reward(landed, taken, self.hit_reward, self.taken_penalty)),
+            "vh": float(reward(taken, landed, self.hit_reward, self.taken_penalty)),
         }
         time = float(self.arena.times()[0])
         over = time >= self.episode_seconds - 1e-9

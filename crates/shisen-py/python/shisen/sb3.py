@@ -21,7 +21,7 @@ from stable_baselines3.common.vec_env.base_vec_env import VecEnv
 
 from . import Scene
 from ._shisen import Arena
-from .env import _check, _scene, opponent_spaces
+from .env import _check, _scene, opponent_spaces, reward
 
 
 class BoxingVecEnv(VecEnv):
@@ -36,9 +36,7 @@ class BoxingVecEnv(VecEnv):
         hit_reward: float = 1.0,
         taken_penalty: float = 1.0,
     ):
-        if not 1 <= num_envs <= 4096:
-            raise ValueError(f"num_envs: 1-4096, got {num_envs}")
-        _check(control_dt, episode_seconds)
+        _check(control_dt, episode_seconds, num_envs)
         obs_space, act_space = opponent_spaces()
         self.render_mode = None
         super().__init__(num_envs, obs_space, act_space)
@@ -72,9 +70,7 @@ class BoxingVecEnv(VecEnv):
             raise RuntimeError("step_async first")
         obs, _, landed, taken = self.arena.step(self._actions)
         obs = np.clip(obs, -5.0, 5.0)
-        rewards = (self.hit_reward * landed - self.taken_penalty * taken.astype(np.float64)).astype(
-            np.float32
-        )
+        rewards = reward(landed, taken, self.hit_reward, self.taken_penalty).astype(np.float32)
         dones = self.arena.times() >= self.episode_seconds - 1e-9
         infos = [{"landed": int(landed[i]), "taken": int(taken[i])} for i in range(self.num_envs)]
         for i in np.flatnonzero(dones):
