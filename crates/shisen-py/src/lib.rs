@@ -580,6 +580,8 @@ fn _shisen(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Sim>()?;
     m.add_class::<arena::Arena>()?;
     m.add("VH_COMMANDS", arena::COMMANDS.to_vec())?;
+    m.add("HEAD_REACH", arena::HEAD_REACH.to_vec())?;
+    m.add("GLOVE_REACH", arena::GLOVE_REACH.to_vec())?;
     m.add("VH_LOOKS", arena::LOOKS.to_vec())?;
     m.add("OPPONENT_OBS", arena::OPPONENT_OBS)?;
     m.add("VH_OBS", arena::VH_OBS)?;

@@ -50,6 +50,8 @@ class Sim:
 
 VH_COMMANDS: list[str]
 VH_LOOKS: list[str]
+HEAD_REACH: list[float]
+GLOVE_REACH: list[float]
 OPPONENT_OBS: int
 VH_OBS: int
 

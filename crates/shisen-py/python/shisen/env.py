@@ -52,13 +52,15 @@ import numpy as np
 from gymnasium import spaces
 
 from . import Scene
+from ._shisen import GLOVE_REACH as _GLOVE_REACH
+from ._shisen import HEAD_REACH as _HEAD_REACH
 from ._shisen import OPPONENT_OBS, Arena
 
 #: How far each part may be moved from its guard position, m per unit of
 #: action (head; gloves), on the x (sideways), y (up) and z (toward the
-#: VH) axes. A glove's 0.45 m forward is a full reach to the VH's head.
-HEAD_REACH = np.array([0.15, 0.15, 0.15])
-GLOVE_REACH = np.array([0.30, 0.30, 0.45])
+#: VH) axes (the simulator's own values, src/arena.rs).
+HEAD_REACH = np.array(_HEAD_REACH)
+GLOVE_REACH = np.array(_GLOVE_REACH)
 #: The VH's actions in the order of the observation's one-hot.
 ACTIONS = ("idle", "guard", "attack", "slip", "duck", "leanback")
 PARTS = ("head", "left_glove", "right_glove")
