@@ -3,7 +3,7 @@
 
 #[test]
 fn short_soak_holds_every_invariant() {
-    let r = shisen::tools::soak::soak(0.5, 7, false, |_| true);
+    let r = shisen::tools::soak::soak(0.5, 7, (false, None), |_| true);
     println!(
         "soak 30 s: {} events, {} VH punches, {} head-contact ticks, {} resets, worst excursion {:.2} deg, rss {:?} KiB",
         r.events, r.vh_punches, r.head_hit_ticks, r.resets, r.worst_limit_excess_deg, r.rss_kib

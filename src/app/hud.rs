@@ -163,6 +163,18 @@ pub fn scoreboard(ui: &egui::Ui, rect: Rect, s: &Session, sim: &shisen::sim::Sim
         big.clone(),
         Color32::WHITE,
     );
+    // The distance between you and the range it is, under the clock.
+    p.text(
+        box_.center_bottom() + vec2(0.0, h * 0.006),
+        Align2::CENTER_TOP,
+        format!(
+            "{:.2} m  {}",
+            sim.distance(),
+            sim.zone().name().to_uppercase()
+        ),
+        small.clone(),
+        Color32::LIGHT_GRAY,
+    );
     // The fighters' punches, either side of the clock.
     let mut side = |f: &FighterStats, name: &str, color: Color32, left: bool| {
         let lines = [
@@ -583,6 +595,13 @@ fn stats_table(ui: &mut egui::Ui, c: &Card) {
                 "knockdowns",
                 c.you.knockdowns.to_string(),
                 c.vh.knockdowns.to_string(),
+            );
+            let r = c.range_shares().map(|x| (100.0 * x).round());
+            row(
+                ui,
+                "time at clinch / mid / long / out",
+                format!("{} / {} / {} / {} %", r[0], r[1], r[2], r[3]),
+                String::new(),
             );
         });
 }

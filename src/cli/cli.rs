@@ -234,6 +234,11 @@ pub enum Command {
         /// blows can stagger and knock it down.
         #[arg(long)]
         balanced: bool,
+        /// The VH as this opponent, `level` or `level-style` (novice,
+        /// amateur, pro; boxer, out-fighter, brawler, counter-puncher):
+        /// its range, output and defence. Default: the default scene's VH.
+        #[arg(long, value_parser = parse_opponent)]
+        opponent: Option<shisen::scene::opponent::Opponent>,
         /// Allow more than 600 simulated minutes.
         #[arg(long)]
         force: bool,

@@ -240,8 +240,9 @@ fn main() -> ExitCode {
             minutes,
             seed,
             balanced,
+            opponent,
             force,
-        }) => verdict(soak_cmd(minutes, seed, balanced, force)),
+        }) => verdict(soak_cmd(minutes, seed, (balanced, opponent), force)),
         Some(Command::Plot { trace, out, size }) => report(
             shisen::tools::output::Outputs::new()
                 .input(&trace)

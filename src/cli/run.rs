@@ -423,7 +423,12 @@ pub fn progress(total: f64, unit: &str) -> indicatif::ProgressBar {
     shisen::tools::parallel::bar(total as u64, &format!("{unit} (Ctrl-C stops)"))
 }
 
-pub fn soak_cmd(minutes: f64, seed: u64, balanced: bool, force: bool) -> Result<bool> {
+pub fn soak_cmd(
+    minutes: f64,
+    seed: u64,
+    vh: (bool, Option<shisen::scene::opponent::Opponent>),
+    force: bool,
+) -> Result<bool> {
     if !(minutes.is_finite() && minutes > 0.0) {
         anyhow::bail!("--minutes: must be a positive number, got {minutes}");
     }
@@ -436,7 +441,7 @@ pub fn soak_cmd(minutes: f64, seed: u64, balanced: bool, force: bool) -> Result<
     let total = (minutes * 60.0) as u64;
     let bar = shisen::tools::parallel::bar(total, "s simulated (Ctrl-C stops)");
     let wall = std::time::Instant::now(); // reporting only
-    let r = shisen::tools::soak::soak(minutes, seed, balanced, |f| {
+    let r = shisen::tools::soak::soak(minutes, seed, vh, |f| {
         bar.set_position((f * total as f64) as u64);
         !stop_requested()
     });
@@ -460,6 +465,19 @@ pub fn soak_cmd(minutes: f64, seed: u64, balanced: bool, force: bool) -> Result<
     println!(
         "  effort: staggered {} times, fatigue {:.2} at the end; knocked down {} times, up {} times",
         r.staggers.0, r.staggers.1, r.knockdowns.0, r.knockdowns.1
+    );
+    let per_min = 60.0 / r.sim_time.max(1e-9);
+    let shares = r.card.range_shares();
+    println!(
+        "  ring craft{}: the VH threw {:.1} punches a minute, landed {:.1}, took {:.1}; time at clinch/mid/long/out {:.0}/{:.0}/{:.0}/{:.0} %",
+        vh.1.map(|o| format!(" ({o})")).unwrap_or_default(),
+        f64::from(r.card.vh.total().thrown) * per_min,
+        f64::from(r.tally.vh_hits) * per_min,
+        f64::from(r.tally.opponent_hits) * per_min,
+        100.0 * shares[0],
+        100.0 * shares[1],
+        100.0 * shares[2],
+        100.0 * shares[3],
     );
     let t = &r.tally;
     println!(

@@ -115,6 +115,8 @@ impl Collector {
             }
             intent.glove_offset[k].z -= pad.trigger(triggers[k]) * reach;
         }
+        intent.step = f32::from(u8::from(pressed.contains(&Command::StepIn)))
+            - f32::from(u8::from(pressed.contains(&Command::StepOut)));
         intent.throw = [
             pressed.contains(&Command::ThrowLeft),
             pressed.contains(&Command::ThrowRight),

@@ -17,6 +17,10 @@ pub enum Command {
     Duck,
     /// Lean back while held.
     LeanBack,
+    /// Step in toward the VH (about 0.3 m).
+    StepIn,
+    /// Step back away from the VH.
+    StepOut,
     /// Throw your left glove forward.
     ThrowLeft,
     /// Throw your right glove forward.

@@ -19,10 +19,17 @@ pub struct Intent {
     pub throw: [bool; 2],
     /// Offset of your head from where it stands (dodges).
     pub head_offset: Vec3,
+    /// A step: +1 in toward the VH, -1 back, 0 none.
+    pub step: f32,
 }
 
 /// How far a dodge moves your head, m: sideways, down (duck), back.
 pub const DODGE: Vec3 = Vec3::new(0.15, 0.12, 0.12);
+/// One step of your footwork, m: the VH's ranges differ by a step
+/// (`shisen_gaze::behaviour::STEP_IN`).
+pub const STEP: f64 = shisen_gaze::behaviour::STEP_IN;
+/// You stand at most this far in front of or behind where you began, m.
+const STEP_SPAN: f64 = 0.9;
 /// Peak glove speed of a throw, m/s (a fast jab).
 pub const PUNCH_SPEED: f64 = 6.0;
 /// A glove or head follows the input over this minimum-jerk time, s.
@@ -43,6 +50,8 @@ pub struct OpponentControl {
     busy_until: [f64; 2],
     /// Throw distance, m (the mouse wheel sets it).
     pub reach: f64,
+    /// Where your head stood at the start, z (footwork's span).
+    start_z: f64,
 }
 
 impl OpponentControl {
@@ -59,6 +68,7 @@ impl OpponentControl {
             sent: rest,
             busy_until: [f64::NEG_INFINITY; 2],
             reach: 0.5,
+            start_z: rest[0].z,
         }
     }
 
@@ -75,6 +85,16 @@ impl OpponentControl {
     /// The events that carry out `intent` at simulation time `t`.
     pub fn update(&mut self, t: f64, intent: &Intent) -> Vec<Event> {
         let mut out = Vec::new();
+        // Footwork: the head, and the gloves' guard with it, a step toward
+        // the VH (-Z: you face it) or away, within a span of the start.
+        if intent.step != 0.0 {
+            let by = -f64::from(intent.step.signum()) * STEP;
+            let z = (self.rest[0].z + by).clamp(self.start_z - STEP_SPAN, self.start_z + STEP_SPAN);
+            let dz = z - self.rest[0].z;
+            for r in &mut self.rest {
+                r.z += dz;
+            }
+        }
         let head = self.rest[0] + intent.head_offset.as_dvec3();
         if head.distance(self.sent[0]) > EPS {
             self.sent[0] = head;

@@ -201,6 +201,27 @@ impl BodyPlan {
         self.still_since = t + p.guard_reaction + p.step_time;
     }
 
+    /// Step `by` m toward `point` (world; the opponent) to attack from
+    /// long range, unless a step is under way. Returns when the foot lands
+    /// (now, if no step is taken).
+    pub fn step_in(&mut self, p: &BehaviourParams, point: DVec3, by: f64, t: f64) -> f64 {
+        if !p.footwork || by <= 0.0 || self.step.as_ref().is_some_and(|s| !s.done(t)) {
+            return t;
+        }
+        let pelvis = at(&self.step, t);
+        let toward = DVec3::new(point.x - pelvis.x, 0.0, point.z - pelvis.z).normalize_or_zero();
+        self.step = Some(Reach {
+            from: pelvis,
+            to: pelvis + toward * by.min(p.max_step),
+            t0: t,
+            dur: p.step_time,
+            back: false,
+        });
+        self.steps += 1;
+        self.still_since = t + p.step_time;
+        t + p.step_time
+    }
+
     /// Walk to `to` (a ground point, world) a footwork step at a time,
     /// facing the way it goes while more than a step away and then
     /// `look` (between rounds: to the corner, then facing the ring).

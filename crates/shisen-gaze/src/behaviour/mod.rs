@@ -8,6 +8,7 @@ mod agent;
 mod body;
 mod params;
 mod plan;
+mod range;
 mod reach;
 #[cfg(test)]
 mod tests;
@@ -25,7 +26,8 @@ pub use agent::{Command, Control, Look};
 use body::BodyPlan;
 pub use body::{Evasion, Posture, choose_evasion};
 pub use params::BehaviourParams;
-use plan::Plan;
+use plan::{Combo, Plan};
+pub use range::{CONTACT, Ranges, SHOULDER_TRAVEL, STEP_IN, Zone};
 use reach::Reach;
 pub use threat::{aimed_glove, glove_onset};
 
@@ -150,6 +152,11 @@ pub struct Behaviour {
     command: Command,
     /// Where the agent asks the gaze to go.
     look: Look,
+    /// The punches still to come in the combination under way.
+    combo: Combo,
+    /// When the step into the attack under way lands, s (the punch is
+    /// timed to land with it).
+    lands: f64,
 }
 
 impl Default for Behaviour {
@@ -176,6 +183,8 @@ impl Behaviour {
             control: Control::Own,
             command: Command::Nothing,
             look: Look::Own,
+            combo: Combo::default(),
+            lands: f64::NEG_INFINITY,
         }
     }
 
@@ -291,7 +300,13 @@ impl Behaviour {
             self.command = Command::Nothing;
             return face;
         }
-        if !matches!(self.plan, Plan::Attack { thrown: true, .. }) {
+        // An attack's punches and its step in own the feet; then the range
+        // again (stepping out).
+        let attacking = match self.plan {
+            Plan::Attack { thrown, .. } => thrown || t < self.lands,
+            _ => false,
+        };
+        if !attacking {
             self.body.keep_range(p, opponent_head, t);
         }
         let own = self.control == Control::Own;
@@ -317,7 +332,14 @@ impl Behaviour {
                 decided,
                 looked,
                 thrown,
-            } => self.attacking((hand, target, decided, looked, thrown), p, view, t),
+            } => self.attacking(
+                (hand, target, decided, looked, thrown),
+                p,
+                pers,
+                view,
+                t,
+                rng,
+            ),
             Plan::Idle => None,
         };
         let request = if own {

@@ -40,6 +40,49 @@ pub(super) enum Plan {
     },
 }
 
+/// The punches still to come in a combination, in order: (glove, at the
+/// body).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(super) struct Combo {
+    queue: [(usize, bool); 2],
+    len: usize,
+}
+
+impl Combo {
+    /// The follow-ups of an attack opening with `first`: after each punch,
+    /// one more with chance `p.combination`, three punches at most. After
+    /// a jab, the cross (or a second jab, one time in four); after the rear
+    /// hand, the lead hook; after a body shot, the head (boxing's 1-1, 1-2,
+    /// 1-2-3, body-head).
+    fn after(first: (usize, bool), p: &BehaviourParams, rng: &mut impl Rng) -> Combo {
+        let mut c = Combo::default();
+        let mut last = first;
+        while p.combination > 0.0 && c.len < c.queue.len() && rng.random::<f64>() < p.combination {
+            let hand = if last.0 == 0 && rng.random::<f64>() >= 0.25 {
+                1
+            } else {
+                0
+            };
+            let body = !last.1 && rng.random::<f64>() < 0.5 * p.body_shot_share;
+            last = (hand, body);
+            c.queue[c.len] = last;
+            c.len += 1;
+        }
+        c
+    }
+
+    fn peek(&self) -> Option<(usize, bool)> {
+        (self.len > 0).then_some(self.queue[0])
+    }
+
+    fn pop(&mut self) {
+        if self.len > 0 {
+            self.queue.rotate_left(1);
+            self.len -= 1;
+        }
+    }
+}
+
 /// The gaze on the incoming glove `threat` (guard and evasion).
 fn on_threat(threat: BodyId, view: &OpponentView, pers: &Personality) -> TopDown {
     TopDown {
@@ -212,8 +255,10 @@ impl Behaviour {
         &mut self,
         (hand, target, decided, mut looked, thrown): (usize, TopDown, f64, Option<f64>, bool),
         p: &BehaviourParams,
+        pers: &Personality,
         view: &OpponentView,
         t: f64,
+        rng: &mut impl Rng,
     ) -> Option<TopDown> {
         if looked.is_none()
             && view
@@ -225,33 +270,73 @@ impl Behaviour {
         // "Looks at the target at once, and after 200 ms throws the
         // punch" (boxing.md): timed from when the eyes land, with a
         // deadline in case they never do (a distraction won).
-        let punch_at = looked.map_or(decided + p.punch_delay + 0.3, |l| l + p.punch_delay);
+        // A step in from long range: the punch lands as the foot does.
+        let punch_at = looked
+            .map_or(decided + p.punch_delay + 0.3, |l| l + p.punch_delay)
+            .max(self.lands - 0.5 * p.punch_time);
         if let Plan::Attack { looked: l, .. } = &mut self.plan {
             *l = looked;
         }
         if !thrown && t >= punch_at {
-            match self.punch_reach(hand, &target, view, t, p) {
-                Some(r) => {
-                    self.lunge = self.lunge_for(hand, r.to, t, p);
-                    self.body.punch(hand, t, p.punch_time);
-                    self.reaches[hand] = Some(r);
-                    self.punches_thrown += 1;
-                    self.plan = Plan::Attack {
-                        hand,
-                        target: target.clone(),
-                        decided,
-                        looked,
-                        thrown: true,
-                    };
-                }
-                // The target went out of view: call the attack off.
-                None => self.plan = Plan::Idle,
+            self.throw(hand, target.clone(), (decided, looked), view, t, p);
+        } else if thrown {
+            // A combination: the next punch starts as the one before comes
+            // back (the other hand), or once it is back (the same hand).
+            let next = self.combo.peek().filter(|&(h, _)| {
+                let back = self.reaches[hand]
+                    .as_ref()
+                    .is_none_or(|r| t >= r.t0 + 0.5 * r.dur);
+                self.reaches[h].is_none() && back
+            });
+            if let Some((h, body)) = next {
+                self.combo.pop();
+                let target = self.attack_target(body, p, pers, view, rng);
+                self.throw(h, target, (decided, looked), view, t, p);
+            } else if self.combo.peek().is_none() && self.reaches[hand].is_none() {
+                self.body.recover(t);
+                self.plan = Plan::Idle;
             }
-        } else if thrown && self.reaches[hand].is_none() {
-            self.body.recover(t);
-            self.plan = Plan::Idle;
         }
-        (self.plan != Plan::Idle).then_some(target)
+        match &self.plan {
+            Plan::Attack { target, .. } => Some(target.clone()),
+            _ => None,
+        }
+    }
+
+    /// Throw glove `hand` at `target` now (the attack decided and looked
+    /// at as `when` says), with the lunge the distance needs if the trunk
+    /// is not already lunging; called off if the target is out of view.
+    fn throw(
+        &mut self,
+        hand: usize,
+        target: TopDown,
+        (decided, looked): (f64, Option<f64>),
+        view: &OpponentView,
+        t: f64,
+        p: &BehaviourParams,
+    ) {
+        match self.punch_reach(hand, &target, view, t, p) {
+            Some(r) => {
+                if self.lunge.is_none() {
+                    self.lunge = self.lunge_for(hand, r.to, t, p);
+                }
+                self.body.punch(hand, t, p.punch_time);
+                self.reaches[hand] = Some(r);
+                self.punches_thrown += 1;
+                self.plan = Plan::Attack {
+                    hand,
+                    target,
+                    decided,
+                    looked,
+                    thrown: true,
+                };
+            }
+            // The target went out of view: call the attack off.
+            None => {
+                self.combo = Combo::default();
+                self.plan = Plan::Idle;
+            }
+        }
     }
 
     /// Idle: maybe decide to attack (a Poisson decision while both gloves
@@ -278,8 +363,9 @@ impl Behaviour {
     }
 
     /// Decide to punch with glove `hand` at the opponent's head or body
-    /// (`to_body`), with the aim's random spread; the eyes go to the target
-    /// first. The attack's request (the target).
+    /// (`to_body`), with the aim's random spread, maybe as the first of a
+    /// combination; from long range, with a step in. The eyes go to the
+    /// target first. The attack's request (the target).
     pub(super) fn start_attack(
         &mut self,
         (hand, to_body): (usize, bool),
@@ -289,9 +375,42 @@ impl Behaviour {
         t: f64,
         rng: &mut impl Rng,
     ) -> TopDown {
+        let target = self.attack_target(to_body, p, pers, view, rng);
+        self.combo = Combo::after((hand, to_body), p, rng);
+        // What the punch needs beyond the lunge, the feet cover.
+        self.lands = t;
+        if let Some(r) = self.punch_reach(hand, &target, view, t, p) {
+            use crate::anatomy::arm;
+            let shoulder = self.body.on_trunk(DVec3::from_array(arm::shoulder(hand)));
+            let short = (r.to - shoulder).length() - 0.95 * (arm::UPPER + arm::FOREARM);
+            let need = short - p.max_lunge;
+            if need > 0.0 {
+                self.lands = self.body.step_in(p, r.to, need + 0.05, t);
+            }
+        }
+        self.plan = Plan::Attack {
+            hand,
+            target: target.clone(),
+            decided: t,
+            looked: None,
+            thrown: false,
+        };
+        target
+    }
+
+    /// The point a punch at the opponent's head or body (`to_body`) aims
+    /// at, with the aim's random spread.
+    fn attack_target(
+        &self,
+        to_body: bool,
+        p: &BehaviourParams,
+        pers: &Personality,
+        view: &OpponentView,
+        rng: &mut impl Rng,
+    ) -> TopDown {
         let n = Normal::new(0.0, p.target_spread.max(1e-12)).expect("valid sd");
         let offset = DVec3::new(n.sample(rng), n.sample(rng), 0.0);
-        let target = if to_body {
+        if to_body {
             TopDown {
                 name: "opponent_body".into(),
                 body: Some(view.parts[0]),
@@ -307,15 +426,7 @@ impl Behaviour {
                 offset,
                 amount: pers.a_attack,
             }
-        };
-        self.plan = Plan::Attack {
-            hand,
-            target: target.clone(),
-            decided: t,
-            looked: None,
-            thrown: false,
-        };
-        target
+        }
     }
 
     fn punch_reach(

@@ -140,24 +140,29 @@ impl Opponent {
         let fresh = crate::sim::effort::EffortParams::default();
         p.effort.punch_cost = fresh.punch_cost * l.costs;
         p.effort.round_drain = fresh.round_drain * l.costs;
-        let range = shisen_gaze::behaviour::BehaviourParams::default().range;
+        b.combination = l.combination;
+        // Where each style fights (behaviour/range.rs): an out-fighter
+        // just out of range, stepping in to punch and out again; a boxer
+        // and a counter-puncher at long range, where the other must step
+        // in to land; a brawler at mid range, in the exchanges.
+        let r = shisen_gaze::behaviour::Ranges::HUMAN;
         let (range, jab_share, body_shot_share, circle_after) = match self.style {
-            Style::Boxer => (range, 0.5, 0.3, Some(3.0)),
+            Style::Boxer => (r.long - 0.1, 0.5, 0.3, Some(3.0)),
             Style::OutFighter => {
                 pers.evade = (l.evade + 0.1).min(1.0);
-                (range + 0.12, 0.65, 0.15, Some(2.0))
+                (r.long + 0.04, 0.65, 0.15, Some(2.0))
             }
             Style::Brawler => {
                 b.attack_rate = l.attack_rate * 1.4;
                 pers.evade = l.evade * 0.4;
                 pers.counter = l.counter * 0.5;
-                (range - 0.06, 0.3, 0.45, Some(3.0))
+                (r.mid - 0.1, 0.3, 0.45, Some(3.0))
             }
             Style::CounterPuncher => {
                 b.attack_rate = l.attack_rate * 0.5;
                 pers.evade = l.evade.max(0.8);
                 pers.counter = (l.counter + 0.4).min(1.0);
-                (range, 0.5, 0.3, Some(3.0))
+                (r.long - 0.14, 0.5, 0.3, Some(3.0))
             }
         };
         b.range = range;
@@ -184,6 +189,8 @@ struct LevelValues {
     a_anchor: f64,
     /// What a punch and a round cost, against the default's.
     costs: f64,
+    /// Chance of each follow-up punch (a combination).
+    combination: f64,
 }
 
 impl Level {
@@ -198,6 +205,7 @@ impl Level {
                 counter: 0.0,
                 a_anchor: 1.0,
                 costs: 1.5,
+                combination: 0.15,
             },
             Level::Amateur => LevelValues {
                 reaction: 0.13,
@@ -208,6 +216,7 @@ impl Level {
                 counter: 0.3,
                 a_anchor: 6.0,
                 costs: 1.0,
+                combination: 0.45,
             },
             Level::Pro => LevelValues {
                 reaction: 0.11,
@@ -218,6 +227,7 @@ impl Level {
                 counter: 0.5,
                 a_anchor: 8.0,
                 costs: 0.75,
+                combination: 0.6,
             },
         }
     }

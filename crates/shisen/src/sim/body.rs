@@ -12,6 +12,7 @@ use crate::physics::body::OpponentPart;
 use crate::physics::body::Seg;
 use crate::physics::legs::{Joint, Part};
 use crate::physics::lower::{BodyCommand, LowerBody, Pelvis, WAIST_REST};
+use shisen_gaze::behaviour::{Ranges, Zone};
 
 /// A planted foot twisted this far from its heading is re-placed, deg
 /// (our choice: a boxer's rear foot pivots some 20 deg in a cross).
@@ -240,6 +241,19 @@ impl Sim {
         let h = self.world.plan.opponent_head.as_dvec3();
         glam::DAffine3::from_translation(DVec3::new(h.x, 0.0, h.z))
             * glam::DAffine3::from_rotation_y(std::f64::consts::PI)
+    }
+
+    /// The distance between the fighters: horizontally from the VH's
+    /// pelvis to your head, m (trace column `range`).
+    pub fn distance(&self) -> f64 {
+        let w = &self.world;
+        let d = w.position(w.part(OpponentPart::Head)).as_dvec3() - self.pelvis();
+        d.x.hypot(d.z)
+    }
+
+    /// The range the fighters are at (behaviour/range.rs).
+    pub fn zone(&self) -> Zone {
+        Ranges::HUMAN.zone(self.distance())
     }
 
     /// The ground point under the waist joint, world: the physical

@@ -364,6 +364,9 @@ impl Sim {
             fighting: self.model.bout.is_none_or(|b| b.phase_at(t).0.fighting()),
             ..Default::default()
         };
+        if x.fighting {
+            self.stats.at_range(round, self.zone().index());
+        }
         self.crowd.tick(self.model.dt);
         for blow in blows {
             self.stats.blow(blow);
@@ -759,10 +762,7 @@ impl Sim {
             pelvis: self.pelvis(),
             waist: self.lower.waist(&self.model.params.body),
             heading: self.lower.facing(),
-            range: {
-                let d = w.position(w.part(OpponentPart::Head)).as_dvec3() - self.pelvis();
-                d.x.hypot(d.z)
-            },
+            range: self.distance(),
             top_saliency: top,
             finite: w.is_finite(),
             punching: self.behaviour.punching(),

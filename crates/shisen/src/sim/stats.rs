@@ -92,6 +92,9 @@ pub struct Card {
     pub vh: FighterStats,
     /// Yours (the avatar's, or the scripted opponent's).
     pub you: FighterStats,
+    /// Ticks fought at each range: clinch, mid, long, out
+    /// (`shisen_gaze::behaviour::Zone`).
+    pub at_range: [u32; 4],
 }
 
 impl Card {
@@ -105,6 +108,16 @@ impl Card {
     fn add(&mut self, o: &Card) {
         self.vh.add(&o.vh);
         self.you.add(&o.you);
+        for (a, b) in self.at_range.iter_mut().zip(o.at_range) {
+            *a += b;
+        }
+    }
+
+    /// The share of the fighting time spent at each range (clinch, mid,
+    /// long, out), 0-1; all 0 before any.
+    pub fn range_shares(&self) -> [f64; 4] {
+        let all: u32 = self.at_range.iter().sum();
+        self.at_range.map(|n| f64::from(n) / f64::from(all.max(1)))
     }
 }
 
@@ -204,6 +217,11 @@ impl Stats {
             }
             BlowKind::Block => c.blocked += 1,
         }
+    }
+
+    /// A tick fought in round `round` at range `zone` (its index).
+    pub fn at_range(&mut self, round: u32, zone: usize) {
+        self.card(round).at_range[zone] += 1;
     }
 
     /// Close the punches whose time is up at `t` as misses.

@@ -392,6 +392,27 @@ impl Shake {
 }
 
 /// The body a part names.
+/// Where the opponent's glove can go when aimed at `to` from a body whose
+/// head is at `head`, and the step its body takes behind the punch: the
+/// arm with the shoulder's travel reaches `Ranges::mid - CONTACT` from
+/// the head, measured on the ground; beyond that the body steps in (at most `STEP_IN`), and a
+/// target farther still is punched short (the glove stops at full
+/// reach). Both fighters share one anatomy (behaviour/range.rs).
+fn opponent_reach(head: DVec3, to: DVec3) -> (DVec3, DVec3) {
+    use shisen_gaze::behaviour::{CONTACT, Ranges};
+    let arm = Ranges::HUMAN.mid - CONTACT;
+    let full = Ranges::HUMAN.glove_reach();
+    // Measured on the ground: the shoulder's height is free.
+    let r = DVec3::new(to.x - head.x, 0.0, to.z - head.z);
+    let d = r.length();
+    if d <= arm {
+        return (to, DVec3::ZERO);
+    }
+    let dir = r / d;
+    let to = to - dir * (d - d.min(full));
+    (to, dir * (d.min(full) - arm))
+}
+
 fn part_body(world: &World, part: &Part) -> BodyId {
     match part {
         Part::Head => world.part(OpponentPart::Head),
@@ -572,9 +593,18 @@ impl Timeline {
                     let b = part_body(world, &part);
                     let from = world.position(b).as_dvec3();
                     let dir = (aim - from).normalize_or(DVec3::NEG_Z);
-                    let to = aim - dir * radius;
-                    if let Some(tr) = self.track_mut(b) {
-                        tr.punch(t, to, speed);
+                    // Reached from where the body is going: a head already
+                    // moving (a scripted step) is not moved again.
+                    let head_b = world.part(OpponentPart::Head);
+                    let moving = self.track_mut(head_b).and_then(|tr| tr.destination());
+                    let head = moving.unwrap_or_else(|| world.position(head_b).as_dvec3());
+                    let (to, step) = opponent_reach(head, aim - dir * radius);
+                    let out = self.track_mut(b).map(|tr| tr.punch(t, to, speed));
+                    // The body steps in behind a punch beyond the arm.
+                    if let (Some(dur), Some(tr), None) = (out, self.track_mut(head_b), moving)
+                        && step.length() > 1e-3
+                    {
+                        tr.lunge(t, head + step, dur);
                     }
                 }
                 // Expanded into `Emotion` events when the scene loaded.

@@ -118,6 +118,11 @@ impl Track {
         }
     }
 
+    /// Where a move under way ends, if the body is moving.
+    pub fn destination(&self) -> Option<DVec3> {
+        self.queue.back().map(Seg::end_pos)
+    }
+
     /// Interrupt whatever is going on at `t` and hold the current position.
     fn interrupt(&mut self, t: f64) -> DVec3 {
         let p = self.position(t);
@@ -134,6 +139,24 @@ impl Track {
             from,
             to,
             t0: t,
+            dur,
+        });
+    }
+
+    /// A lunge: minimum-jerk out to `to` over `dur`, then back to the
+    /// start over the same time (the body's step behind a punch).
+    pub fn lunge(&mut self, t: f64, to: DVec3, dur: f64) {
+        let from = self.interrupt(t);
+        self.queue.push_back(Seg::Reach {
+            from,
+            to,
+            t0: t,
+            dur,
+        });
+        self.queue.push_back(Seg::Reach {
+            from: to,
+            to: from,
+            t0: t + dur,
             dur,
         });
     }

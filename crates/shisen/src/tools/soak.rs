@@ -8,6 +8,7 @@ use rand::{RngExt, SeedableRng};
 
 use crate::physics::body::{HARD_STOP_MARGIN_DEG, Seg};
 use crate::scene::LoadedScene;
+use crate::scene::opponent::Opponent;
 use crate::sim::timeline::{Action, Event, Hand, Part, PunchTarget};
 use crate::sim::{DT, Sample, Sim};
 use shisen_face::tables::Emotion;
@@ -130,10 +131,12 @@ impl SparringBot {
             );
         }
         if self.happens(self.rates.dodge) {
+            // A dodge, and a step in or out (the bot's feet: it stands
+            // between mid and long range of where it began).
             let to = DVec3::new(
                 self.rng.random_range(-0.15..0.15),
                 self.rng.random_range(1.6..1.75),
-                0.92,
+                self.rng.random_range(0.8..1.1),
             );
             let duration = self.rng.random_range(0.15..0.5);
             push(
@@ -166,6 +169,9 @@ impl SparringBot {
 /// What a soak run found.
 #[derive(Clone, Debug, Default)]
 pub struct SoakReport {
+    /// The bout's card over the whole run: punches by both, time at each
+    /// range.
+    pub card: crate::sim::stats::Card,
     /// Simulated time, s.
     pub sim_time: f64,
     /// Ticks.
@@ -278,17 +284,19 @@ const MAX_GROWTH_KIB: u64 = 1024;
 const MAX_JOINT_GAP_MM: f64 = 10.0;
 
 /// Spar for `minutes` of simulated time against a seeded random opponent,
-/// on the default scene's VH, checking invariants every tick. `progress`
+/// on the default scene's VH (as `opponent`, a level and style, if given:
+/// its range, output and defence), checking invariants every tick. `progress`
 /// is called about once per simulated second with the fraction done; it
 /// returns false to stop the soak there (the report covers what ran).
 pub fn soak(
     minutes: f64,
     seed: u64,
-    balanced: bool,
+    (balanced, opponent): (bool, Option<Opponent>),
     mut progress: impl FnMut(f64) -> bool,
 ) -> SoakReport {
     let mut loaded = LoadedScene::default_scene();
     loaded.scene.seed = seed;
+    loaded.scene.vh.opponent = opponent;
     if balanced {
         loaded.scene.vh.body.pelvis = crate::physics::lower::Pelvis::Balanced;
     }
@@ -346,5 +354,6 @@ pub fn soak(
     r.resets = sim.resets;
     r.knockdowns = (sim.balance.knockdowns, sim.balance.get_ups);
     r.tally = sim.tally();
+    r.card = sim.stats.total();
     r
 }

@@ -96,6 +96,10 @@ pub const COLUMNS: &[(&str, Cell)] = &[
     ("pelvis_x", num(|s| s.pelvis.x)),
     ("pelvis_z", num(|s| s.pelvis.z)),
     ("range", num(|s| s.range)),
+    (
+        "zone",
+        Cell::Text(|s, o| o.push_str(shisen_gaze::behaviour::Ranges::HUMAN.zone(s.range).name())),
+    ),
     ("heading", num(|s| deg(s.heading))),
     ("waist_yaw", num(|s| deg(s.waist.yaw))),
     ("waist_pitch", num(|s| deg(s.waist.pitch))),
