@@ -382,10 +382,13 @@ impl Behaviour {
         if let Some(r) = self.punch_reach(hand, &target, view, t, p) {
             use crate::anatomy::arm;
             let shoulder = self.body.on_trunk(DVec3::from_array(arm::shoulder(hand)));
+            // The glove lands a contact's width before the target's centre;
+            // aimed 5 cm deep, so a punch that needs 5 cm more still
+            // touches, and takes no step.
             let short = (r.to - shoulder).length() - 0.95 * (arm::UPPER + arm::FOREARM);
-            let need = short - p.max_lunge;
-            if need > 0.0 {
-                self.lands = self.body.step_in(p, r.to, need + 0.05, t);
+            let need = short - p.max_lunge - (super::CONTACT - 0.05);
+            if need > 0.05 {
+                self.lands = self.body.step_in(p, r.to, need, t);
             }
         }
         self.plan = Plan::Attack {
