@@ -100,6 +100,7 @@ mod tests {
                 target: PunchTarget::Point(DVec3::new(0.13, 1.55, 0.16)),
                 speed: 6.0,
                 through: None,
+                glove_only: false,
             },
         });
         let text = r.scene_text(2.5);

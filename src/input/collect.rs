@@ -117,6 +117,7 @@ impl Collector {
         }
         intent.step = f32::from(u8::from(pressed.contains(&Command::StepIn)))
             - f32::from(u8::from(pressed.contains(&Command::StepOut)));
+        intent.feint = pressed.contains(&Command::Feint);
         intent.throw = [
             pressed.contains(&Command::ThrowLeft),
             pressed.contains(&Command::ThrowRight),

@@ -21,6 +21,9 @@ pub enum Command {
     StepIn,
     /// Step back away from the VH.
     StepOut,
+    /// Feint with your lead (left) hand: a half step in and a twitch of
+    /// the glove, no punch.
+    Feint,
     /// Throw your left glove forward.
     ThrowLeft,
     /// Throw your right glove forward.

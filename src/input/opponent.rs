@@ -21,6 +21,8 @@ pub struct Intent {
     pub head_offset: Vec3,
     /// A step: +1 in toward the VH, -1 back, 0 none.
     pub step: f32,
+    /// Feint with the lead hand now.
+    pub feint: bool,
 }
 
 /// How far a dodge moves your head, m: sideways, down (duck), back.
@@ -107,6 +109,12 @@ impl OpponentControl {
                 },
             });
         }
+        if intent.feint && !self.punching(0, t) {
+            out.push(Event {
+                at: t,
+                action: Action::Feint { hand: Hand::Left },
+            });
+        }
         for k in 0..2 {
             if self.punching(k, t) {
                 continue;
@@ -129,6 +137,7 @@ impl OpponentControl {
                         target: PunchTarget::Point(to),
                         speed: PUNCH_SPEED,
                         through: None,
+                        glove_only: false,
                     },
                 });
                 continue;

@@ -55,6 +55,18 @@ pub struct Personality {
     /// the expert strategy, not amounts).
     #[schemars(range(min = 0.0, max = 100.0))]
     pub a_anchor: f64,
+    /// Share of the opponent's body cues (its head stepping in behind a
+    /// punch: `behaviour.cue_speed`) the VH acts on before the glove
+    /// flies: the guard raised on the side the cue predicts and, from
+    /// long range, a step back. 0-1, a probability. Default 0: the seed
+    /// reacts to gloves only. Experts anticipate from a body's early
+    /// movement, near-experts only once the attack has started, novices
+    /// only with the whole action in view (Rosalie & Mueller 2013, Q. J.
+    /// Exp. Psychol. 66:1951, karate); the levels set 0 (novice), 0.5
+    /// (amateur) and 0.85 (pro), our amounts.
+    #[serde(default)]
+    #[schemars(range(min = 0.0, max = 1.0))]
+    pub anticipation: f64,
 }
 
 impl Default for Personality {
@@ -72,6 +84,7 @@ impl Default for Personality {
             evade: 0.7,
             counter: 0.3,
             a_anchor: 6.0,
+            anticipation: 0.0,
         }
     }
 }

@@ -438,6 +438,7 @@ impl Sim {
                 target,
                 speed,
                 through: None,
+                glove_only: false,
             },
         )
     }

@@ -201,18 +201,19 @@ impl BodyPlan {
         self.still_since = t + p.guard_reaction + p.step_time;
     }
 
-    /// Step `by` m toward `point` (world; the opponent) to attack from
-    /// long range, unless a step is under way. Returns when the foot lands
-    /// (now, if no step is taken).
+    /// Step `by` m toward `point` (world; the opponent; away if `by` is
+    /// negative), at most `max_step`, unless a step is under way: in to
+    /// attack from long range, out from a read punch. Returns when the
+    /// foot lands (now, if no step is taken).
     pub fn step_in(&mut self, p: &BehaviourParams, point: DVec3, by: f64, t: f64) -> f64 {
-        if !p.footwork || by <= 0.0 || self.step.as_ref().is_some_and(|s| !s.done(t)) {
+        if !p.footwork || by.abs() < 1e-3 || self.step.as_ref().is_some_and(|s| !s.done(t)) {
             return t;
         }
         let pelvis = at(&self.step, t);
         let toward = DVec3::new(point.x - pelvis.x, 0.0, point.z - pelvis.z).normalize_or_zero();
         self.step = Some(Reach {
             from: pelvis,
-            to: pelvis + toward * by.min(p.max_step),
+            to: pelvis + toward * by.clamp(-p.max_step, p.max_step),
             t0: t,
             dur: p.step_time,
             back: false,

@@ -29,7 +29,7 @@ pub use params::BehaviourParams;
 use plan::{Combo, Plan};
 pub use range::{CONTACT, Ranges, SHOULDER_TRAVEL, STEP_IN, Zone};
 use reach::Reach;
-pub use threat::{aimed_glove, glove_onset};
+pub use threat::{aimed_glove, body_cue, glove_onset};
 
 /// The eyes are "on" a target when both lines of sight are within this
 /// angle of it (rad): the planner's cue that the attack target has been
@@ -157,6 +157,10 @@ pub struct Behaviour {
     /// When the step into the attack under way lands, s (the punch is
     /// timed to land with it).
     lands: f64,
+    /// The body cue in view has been weighed (once per cue).
+    cued: bool,
+    /// Body cues the VH acted on.
+    pub cue_reads: u32,
 }
 
 impl Default for Behaviour {
@@ -185,6 +189,8 @@ impl Behaviour {
             look: Look::Own,
             combo: Combo::default(),
             lands: f64::NEG_INFINITY,
+            cued: false,
+            cue_reads: 0,
         }
     }
 
@@ -311,6 +317,7 @@ impl Behaviour {
         }
         let own = self.control == Control::Own;
         if own {
+            self.read_cue(p, pers, view, t, rng);
             self.consider_evasion(p, pers, view, opponent_head, t, rng);
             self.meet_threat(p, view, t);
         } else {

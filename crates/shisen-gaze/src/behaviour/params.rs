@@ -132,6 +132,14 @@ pub struct BehaviourParams {
     /// jabs are 41.5 % of their punches (CompuBox averages). A share, 0-1.
     #[schemars(range(min = 0.0, max = 1.0))]
     pub jab_share: f64,
+    /// The opponent's head closing faster than this is a body cue, m/s
+    /// (a step in behind a punch, or a feint): read by a VH whose
+    /// `personality.anticipation` is above 0. Default 0.5: a stepping
+    /// punch's head peaks near 2 m/s, a feint's near 1; the sway of a
+    /// guard stays well under. 0.1-20 m/s, as `evade_speed`.
+    #[serde(default = "default_cue_speed")]
+    #[schemars(range(min = 0.1, max = 20.0))]
+    pub cue_speed: f64,
     /// Chance that an attack goes on with one more punch (a combination:
     /// 1-1, 1-2, 1-2-3, body-head), asked after each punch, at most three
     /// punches in all; a probability, 0-1. Default 0: the seed's single
@@ -151,6 +159,10 @@ pub struct BehaviourParams {
 
 fn default_max_lunge() -> f64 {
     0.3
+}
+
+fn default_cue_speed() -> f64 {
+    0.5
 }
 
 impl Default for BehaviourParams {
@@ -182,6 +194,7 @@ impl Default for BehaviourParams {
             circle_after: None,
             step_time: 0.4,
             jab_share: 0.5,
+            cue_speed: default_cue_speed(),
             combination: 0.0,
             guard_drop: 0.0,
         }

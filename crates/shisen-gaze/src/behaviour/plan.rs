@@ -129,6 +129,51 @@ impl Behaviour {
         }
     }
 
+    /// A body cue (the opponent's head stepping in) is weighed once: with
+    /// the personality's `anticipation`, while idle or only deciding an
+    /// attack, the guard goes up on the side the cue predicts (the rear
+    /// hand's punch arrives on the VH's left) before a glove is seen and,
+    /// from long range, the feet step back so a stepping punch falls
+    /// short. A feint draws the same answer.
+    pub(super) fn read_cue(
+        &mut self,
+        p: &BehaviourParams,
+        pers: &Personality,
+        view: &OpponentView,
+        t: f64,
+        rng: &mut impl Rng,
+    ) {
+        let Some((head, rear)) = super::body_cue(p, view) else {
+            self.cued = false;
+            return;
+        };
+        if self.cued {
+            return;
+        }
+        self.cued = true;
+        let free = matches!(self.plan, Plan::Idle | Plan::Attack { thrown: false, .. });
+        if pers.anticipation <= 0.0 || !free || rng.random::<f64>() >= pers.anticipation {
+            return;
+        }
+        self.cue_reads += 1;
+        let (threat, hand) = if rear {
+            (view.parts[2], 0)
+        } else {
+            (view.parts[1], 1)
+        };
+        let me = view.vh_points[0];
+        let toward = DVec3::new(head.position.x - me.x, 0.0, head.position.z - me.z);
+        let d = toward.length();
+        let toward = toward.normalize_or_zero();
+        // The VH's left is up x its forward.
+        let side = DVec3::Y.cross(toward) * if hand == 0 { 1.0 } else { -1.0 };
+        let point = me + toward * 0.25 + side * 0.08;
+        self.raise_guard((threat, hand, point, 0.15), p, t);
+        if d > super::Ranges::HUMAN.mid {
+            self.body.step_in(p, head.position, -p.max_step, t);
+        }
+    }
+
     /// A threat seen now pre-empts everything but an evasion of it: the
     /// glove on its side goes to meet it.
     pub(super) fn meet_threat(&mut self, p: &BehaviourParams, view: &OpponentView, t: f64) {

@@ -1,5 +1,6 @@
-//! What the planner sees coming: a punch starting at the head (to evade)
-//! and a glove aimed at the VH (to guard).
+//! What the planner sees coming: a punch starting at the head (to evade),
+//! a glove aimed at the VH (to guard) and, before either, the body's cue
+//! (the opponent's head stepping in behind a punch, or a feint).
 
 use glam::DVec3;
 
@@ -56,4 +57,24 @@ pub fn aimed_glove(p: &BehaviourParams, view: &OpponentView) -> Option<(BodyId, 
         }
     }
     best
+}
+
+/// The body's cue (docs/model/boxing.md "Cues"): the opponent's head, as
+/// vision sees it, closing on the VH's head faster than `cue_speed`: the
+/// step of a punch thrown from long range (the body leads the glove) or a
+/// feint. Returns the head as seen and whether the cue predicts the rear
+/// hand: a head that also moves to the opponent's lead side by more than
+/// a third of its approach (the rear shoulder turning in carries it
+/// there); otherwise the lead hand's jab.
+pub fn body_cue<'a>(p: &BehaviourParams, view: &OpponentView<'a>) -> Option<(&'a Seen, bool)> {
+    let s = view.seen.iter().find(|s| s.body == view.parts[0])?;
+    let to = view.vh_points[0] - s.position;
+    let to = DVec3::new(to.x, 0.0, to.z).normalize_or_zero();
+    let closing = s.velocity.dot(to);
+    if closing <= p.cue_speed {
+        return None;
+    }
+    // The opponent faces the VH: its lead (left) side is up x forward.
+    let lead = DVec3::Y.cross(to);
+    Some((s, s.velocity.dot(lead) > closing / 3.0))
 }

@@ -141,6 +141,7 @@ impl Opponent {
         p.effort.punch_cost = fresh.punch_cost * l.costs;
         p.effort.round_drain = fresh.round_drain * l.costs;
         b.combination = l.combination;
+        pers.anticipation = l.anticipation;
         // Where each style fights (behaviour/range.rs): an out-fighter
         // just out of range, stepping in to punch and out again; a boxer
         // and a counter-puncher at long range, where the other must step
@@ -191,6 +192,8 @@ struct LevelValues {
     costs: f64,
     /// Chance of each follow-up punch (a combination).
     combination: f64,
+    /// Share of body cues acted on before the glove flies.
+    anticipation: f64,
 }
 
 impl Level {
@@ -206,6 +209,7 @@ impl Level {
                 a_anchor: 1.0,
                 costs: 1.5,
                 combination: 0.15,
+                anticipation: 0.0,
             },
             Level::Amateur => LevelValues {
                 reaction: 0.13,
@@ -217,6 +221,7 @@ impl Level {
                 a_anchor: 6.0,
                 costs: 1.0,
                 combination: 0.45,
+                anticipation: 0.5,
             },
             Level::Pro => LevelValues {
                 reaction: 0.11,
@@ -228,6 +233,7 @@ impl Level {
                 a_anchor: 8.0,
                 costs: 0.75,
                 combination: 0.6,
+                anticipation: 0.85,
             },
         }
     }

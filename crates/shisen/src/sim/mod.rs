@@ -15,6 +15,7 @@ pub mod crowd;
 pub mod effort;
 pub mod expect;
 pub mod model;
+pub mod punch;
 mod sample;
 pub mod stats;
 mod streams;

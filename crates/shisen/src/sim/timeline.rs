@@ -109,6 +109,19 @@ pub enum Action {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         #[schemars(range(min = 0.0, max = 0.5))]
         through: Option<f64>,
+        /// Throw the glove alone (default false): no reach, no step
+        /// behind it, no lead of the body, so nothing to read before the
+        /// glove flies (the seed's punch; the benchmark without cues).
+        /// Otherwise the body throws it (docs/model/boxing.md "Cues").
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        glove_only: bool,
+    },
+    /// A feint with one hand: the body's part of a punch without the
+    /// punch: a half step in (the head leading, toward the lead side for
+    /// the rear hand) and a twitch of the glove, out and back.
+    Feint {
+        /// Which hand the feint shows.
+        hand: Hand,
     },
     /// Push the VH: an impulse on one of its parts, as a shove or a blow
     /// of known size would give (push-recovery tests). It moves the body
@@ -392,27 +405,6 @@ impl Shake {
 }
 
 /// The body a part names.
-/// Where the opponent's glove can go when aimed at `to` from a body whose
-/// head is at `head`, and the step its body takes behind the punch: the
-/// arm with the shoulder's travel reaches `Ranges::mid - CONTACT` from
-/// the head, measured on the ground; beyond that the body steps in (at most `STEP_IN`), and a
-/// target farther still is punched short (the glove stops at full
-/// reach). Both fighters share one anatomy (behaviour/range.rs).
-fn opponent_reach(head: DVec3, to: DVec3) -> (DVec3, DVec3) {
-    use shisen_gaze::behaviour::{CONTACT, Ranges};
-    let arm = Ranges::HUMAN.mid - CONTACT;
-    let full = Ranges::HUMAN.glove_reach();
-    // Measured on the ground: the shoulder's height is free.
-    let r = DVec3::new(to.x - head.x, 0.0, to.z - head.z);
-    let d = r.length();
-    if d <= arm {
-        return (to, DVec3::ZERO);
-    }
-    let dir = r / d;
-    let to = to - dir * (d - d.min(full));
-    (to, dir * (d.min(full) - arm))
-}
-
 fn part_body(world: &World, part: &Part) -> BodyId {
     match part {
         Part::Head => world.part(OpponentPart::Head),
@@ -446,6 +438,8 @@ pub struct Timeline {
     pub(super) pushes: Vec<(PushPart, DVec3)>,
     /// The imposed translation of the trunk, if any.
     pub(super) carry: Option<Carry>,
+    /// Feints shown so far.
+    pub feints: u32,
 }
 
 impl Timeline {
@@ -466,6 +460,7 @@ impl Timeline {
             thrown: Vec::new(),
             pushes: Vec::new(),
             carry: None,
+            feints: 0,
         }
     }
 
@@ -566,6 +561,7 @@ impl Timeline {
                     target,
                     speed,
                     through,
+                    glove_only,
                 } => {
                     self.thrown.push(hand);
                     let through = through.unwrap_or(FOLLOW_THROUGH);
@@ -593,19 +589,56 @@ impl Timeline {
                     let b = part_body(world, &part);
                     let from = world.position(b).as_dvec3();
                     let dir = (aim - from).normalize_or(DVec3::NEG_Z);
-                    // Reached from where the body is going: a head already
-                    // moving (a scripted step) is not moved again.
+                    // Thrown by the body from where it is going: a head
+                    // already moving (a scripted step) is not moved again.
                     let head_b = world.part(OpponentPart::Head);
                     let moving = self.track_mut(head_b).and_then(|tr| tr.destination());
                     let head = moving.unwrap_or_else(|| world.position(head_b).as_dvec3());
-                    let (to, step) = opponent_reach(head, aim - dir * radius);
-                    let out = self.track_mut(b).map(|tr| tr.punch(t, to, speed));
-                    // The body steps in behind a punch beyond the arm.
-                    if let (Some(dur), Some(tr), None) = (out, self.track_mut(head_b), moving)
-                        && step.length() > 1e-3
+                    let rear = hand == Hand::Right;
+                    let depth = if matches!(target, PunchTarget::Point(_)) {
+                        0.0
+                    } else {
+                        through
+                    };
+                    let th = if glove_only {
+                        super::punch::throw(head, aim - dir * radius, depth, rear, false)
+                    } else {
+                        let mut th =
+                            super::punch::throw(head, aim - dir * radius, depth, rear, true);
+                        if moving.is_some() {
+                            (th.step, th.lead) = (DVec3::ZERO, 0.0);
+                        }
+                        th
+                    };
+                    let out = self
+                        .track_mut(b)
+                        .map(|tr| tr.punch_after(t, th.lead, th.to, speed));
+                    if let (Some(dur), Some(tr)) = (out, self.track_mut(head_b))
+                        && th.step.length() > 1e-3
                     {
+                        tr.lunge(t, head + th.step, th.lead + dur);
+                    }
+                }
+                Action::Feint { hand } => {
+                    let head_b = world.part(OpponentPart::Head);
+                    let head = world.position(head_b).as_dvec3();
+                    let target = world.rb(Seg::Head).translation().as_dvec3();
+                    let (step, dir) = super::punch::feint(head, target, hand == Hand::Right);
+                    let dur = super::punch::KINETIC_LEAD + 0.12;
+                    if let Some(tr) = self.track_mut(head_b) {
                         tr.lunge(t, head + step, dur);
                     }
+                    let part = match hand {
+                        Hand::Left => Part::LeftGlove,
+                        Hand::Right => Part::RightGlove,
+                    };
+                    let b = part_body(world, &part);
+                    let from = world.position(b).as_dvec3();
+                    if let Some(tr) = self.track_mut(b) {
+                        let twitch = from + dir * super::punch::FEINT_TWITCH;
+                        tr.lunge(t + super::punch::KINETIC_LEAD, twitch, 0.06);
+                    }
+                    self.feints += 1;
                 }
                 // Expanded into `Emotion` events when the scene loaded.
                 Action::EmotionScript { .. } => {}

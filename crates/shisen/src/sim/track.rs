@@ -164,7 +164,23 @@ impl Track {
     /// A punch: minimum-jerk out to `to` with peak speed `speed` (m/s), then
     /// back to the start over the same time. Returns the outbound duration.
     pub fn punch(&mut self, t: f64, to: DVec3, speed: f64) -> f64 {
+        self.punch_after(t, 0.0, to, speed)
+    }
+
+    /// A punch that leaves after `lead` s held where the glove is (the
+    /// body's part of the punch goes first). Returns the outbound
+    /// duration, lead excluded.
+    pub fn punch_after(&mut self, t: f64, lead: f64, to: DVec3, speed: f64) -> f64 {
         let from = self.interrupt(t);
+        if lead > 0.0 {
+            self.queue.push_back(Seg::Reach {
+                from,
+                to: from,
+                t0: t,
+                dur: lead,
+            });
+        }
+        let t = t + lead.max(0.0);
         // Peak speed of a minimum-jerk move is 1.875 d / T (see math::min_jerk_d).
         let dur = (MIN_JERK_PEAK * (to - from).length() / speed).max(1e-3);
         self.queue.push_back(Seg::Reach {

@@ -90,6 +90,7 @@ impl SparringBot {
                     target,
                     speed,
                     through: None,
+                    glove_only: false,
                 },
             );
         }

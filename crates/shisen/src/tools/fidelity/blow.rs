@@ -31,6 +31,7 @@ fn jab(model: &Model, speed: f64) -> Vec<Sample> {
                 target: PunchTarget::Head,
                 speed,
                 through: Some(0.15),
+                glove_only: false,
             },
         ),
     ];

@@ -578,6 +578,7 @@ fn jabs(every: f64, until: f64, speed: f64) -> Vec<Event> {
                 target: PunchTarget::Head,
                 speed,
                 through: None,
+                glove_only: false,
             },
         ));
         k += 1;
