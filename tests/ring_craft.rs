@@ -13,8 +13,9 @@ const JABS: usize = 10;
 /// ten 7 m/s jabs 1.6 s apart from where you stand, thrown by the body
 /// (a step in leading the glove) or with the glove alone; or, with
 /// `feint`, ten feints instead. Returns (hits, punches blocked, cues or
-/// feints it acted on, defensive actions started within 0.5 s of each).
-fn bout(level: &str, glove_only: bool, feint: bool) -> (u32, u32, u32, usize) {
+/// feints it acted on, defensive actions started within 0.5 s of each,
+/// fixations: gaze-target changes).
+fn bout(level: &str, glove_only: bool, feint: bool) -> (u32, u32, u32, usize, u32) {
     let events: String = (0..JABS)
         .map(|k| {
             let at = 2.0 + 1.6 * k as f64;
@@ -37,8 +38,13 @@ fn bout(level: &str, glove_only: bool, feint: bool) -> (u32, u32, u32, usize) {
     let mut sim = loaded.sim();
     let ticks = (loaded.scene.duration / shisen::sim::DT).round() as usize;
     let mut defended = vec![false; JABS];
+    let (mut fixations, mut on) = (0, String::new());
     for _ in 0..ticks {
         let s = sim.step().clone();
+        if s.gaze_target != on {
+            fixations += 1;
+            on = s.gaze_target.clone();
+        }
         let k = ((s.t - 2.0) / 1.6).floor();
         if k >= 0.0 && (s.t - 2.0 - 1.6 * k) < 0.5 && s.action.defends() {
             defended[k as usize] = true;
@@ -50,20 +56,25 @@ fn bout(level: &str, glove_only: bool, feint: bool) -> (u32, u32, u32, usize) {
         t.opponent_blocked,
         sim.behaviour.cue_reads,
         defended.iter().filter(|&&d| d).count(),
+        fixations,
     )
 }
 
 #[test]
 fn reading_the_body_defends_a_stepping_jab_and_feints_draw_it() {
-    println!("| level | cues | hits | blocked | cues read | defended share |");
-    println!("|---|---|---|---|---|---|");
+    println!("| level | cues | hits | blocked | cues read | defended share | fixations |");
+    println!("|---|---|---|---|---|---|---|");
     let mut share = std::collections::HashMap::new();
+    let mut looks = Vec::new();
     for level in ["Novice", "Amateur", "Pro"] {
         for glove_only in [false, true] {
-            let (hits, blocked, read, _) = bout(level, glove_only, false);
+            let (hits, blocked, read, _, fix) = bout(level, glove_only, false);
             let s = 1.0 - f64::from(hits) / JABS as f64;
+            if !glove_only {
+                looks.push(fix);
+            }
             println!(
-                "| {level} | {} | {hits} | {blocked} | {read} | {s:.1} |",
+                "| {level} | {} | {hits} | {blocked} | {read} | {s:.1} | {fix} |",
                 if glove_only {
                     "none (glove only)"
                 } else {
@@ -77,7 +88,7 @@ fn reading_the_body_defends_a_stepping_jab_and_feints_draw_it() {
     println!("|---|---|---|---|");
     let mut drawn = Vec::new();
     for level in ["Novice", "Amateur", "Pro"] {
-        let (_, _, read, reacted) = bout(level, false, true);
+        let (_, _, read, reacted, _) = bout(level, false, true);
         println!("| {level} | {JABS} | {read} | {reacted} |");
         drawn.push(reacted);
     }
@@ -91,6 +102,8 @@ fn reading_the_body_defends_a_stepping_jab_and_feints_draw_it() {
         share[&("Pro", false)] >= share[&("Novice", false)] + 0.3,
         "{share:?}"
     );
+    // The pro's eyes hold the head; the novice's chase the gloves.
+    assert!(looks[2] < looks[0], "fixations by level: {looks:?}");
     // Feints draw the pro's defence more often than the novice's, and
     // not every time.
     assert!(drawn[2] > drawn[0], "{drawn:?}");

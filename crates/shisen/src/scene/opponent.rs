@@ -142,6 +142,7 @@ impl Opponent {
         p.effort.round_drain = fresh.round_drain * l.costs;
         b.combination = l.combination;
         pers.anticipation = l.anticipation;
+        pers.a_face = l.a_face;
         // Where each style fights (behaviour/range.rs): an out-fighter
         // just out of range, stepping in to punch and out again; a boxer
         // and a counter-puncher at long range, where the other must step
@@ -194,6 +195,14 @@ struct LevelValues {
     combination: f64,
     /// Share of body cues acted on before the glove flies.
     anticipation: f64,
+    /// The pull of the opponent's face, the visual pivot: above the
+    /// guard's (3) the eyes stay on it while the gloves are watched in
+    /// the periphery; below a glove's saliency they chase the gloves.
+    /// Experts fixate fewer places for longer (Mann et al. 2007, J.
+    /// Sport Exerc. Psychol. 29:457, meta-analysis), martial-arts experts
+    /// on the head (Ripoll et al. 1995; Hausegger et al. 2019); the
+    /// seed's strong and weak boxers' amounts.
+    a_face: f64,
 }
 
 impl Level {
@@ -210,6 +219,7 @@ impl Level {
                 costs: 1.5,
                 combination: 0.15,
                 anticipation: 0.0,
+                a_face: 0.5,
             },
             Level::Amateur => LevelValues {
                 reaction: 0.13,
@@ -222,6 +232,7 @@ impl Level {
                 costs: 1.0,
                 combination: 0.45,
                 anticipation: 0.5,
+                a_face: 1.5,
             },
             Level::Pro => LevelValues {
                 reaction: 0.11,
@@ -234,6 +245,7 @@ impl Level {
                 costs: 0.75,
                 combination: 0.6,
                 anticipation: 0.85,
+                a_face: 4.0,
             },
         }
     }
