@@ -37,7 +37,7 @@ fn bout(level: &str, glove_only: bool, feint: bool) -> (u32, u32, u32, usize, u3
     let loaded = LoadedScene::from_str(&text, Path::new("<cues>"), None).expect("a valid scene");
     let mut sim = loaded.sim();
     let ticks = (loaded.scene.duration / shisen::sim::DT).round() as usize;
-    let mut defended = vec![false; JABS];
+    let mut defended = [false; JABS];
     let (mut fixations, mut on) = (0, String::new());
     for _ in 0..ticks {
         let s = sim.step().clone();

@@ -16,6 +16,7 @@ use crate::tools::plot::{Panel, Series, Stroke, chart};
 
 mod balance;
 mod blow;
+mod ring;
 mod tvor;
 
 /// One row of the report.
@@ -188,6 +189,7 @@ pub fn battery(model: &Model) -> (Vec<Row>, Curves) {
     blow::blows(model, &mut rows);
     tvor::tvor(model, &mut rows);
     balance::balance(model, &mut rows);
+    ring::ring(model, &mut rows);
     (rows, curves)
 }
 
