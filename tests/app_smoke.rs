@@ -97,8 +97,9 @@ fn mouse_and_keyboard_drive_your_avatar() {
 }
 
 /// A short bout played through the real window with xdotool: two rounds
-/// of 6 s with 3 s between, against a novice; your punches thrown with
-/// the keys (F, J) while the pointer rests over the VH. The statistics
+/// of 6 s with 3 s between, against a novice; stepping in (E), punching
+/// with the keys (F, J) while the pointer rests over the VH and stepping
+/// out (Q): a novice boxer holds long range, where only a step in lands. The statistics
 /// the app writes at each bell (`--stats`) show your punches thrown in
 /// round 1 and more by the end, punches landing, and both bells that end
 /// the rounds; then the menu (Esc) quits (Q) and the app exits 0.
@@ -163,7 +164,7 @@ fn a_short_bout_through_the_bell_counts_punches_and_quits_from_the_menu() {
     // Punch, left and right, until the bell ends round 1, then round 2
     // (the simulation may run slower than the wall clock in a debug build).
     let mut after_round_1 = None;
-    let mut keys = ["f", "j"].iter().cycle();
+    let mut keys = ["e", "f", "j", "q"].iter().cycle();
     while !rang(2) {
         assert!(
             started.elapsed() < Duration::from_secs(200),
