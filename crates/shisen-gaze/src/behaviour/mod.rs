@@ -27,7 +27,7 @@ use body::BodyPlan;
 pub use body::{Evasion, Posture, choose_evasion};
 pub use params::BehaviourParams;
 use plan::{Combo, Plan};
-pub use range::{CONTACT, Ranges, SHOULDER_TRAVEL, STEP_IN, Zone};
+pub use range::{AIM_DEPTH, CONTACT, Ranges, STEP_IN, Zone};
 use reach::Reach;
 pub use threat::{aimed_glove, body_cue, glove_onset};
 

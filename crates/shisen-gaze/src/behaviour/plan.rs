@@ -9,7 +9,10 @@ use rand_distr::{Distribution, Normal};
 
 use super::reach::Reach;
 use super::threat::{aimed_glove, glove_onset};
-use super::{Behaviour, BehaviourParams, Evasion, OpponentView, TopDown, choose_evasion};
+use super::{
+    AIM_DEPTH, Behaviour, BehaviourParams, CONTACT, Evasion, OpponentView, TopDown, choose_evasion,
+};
+use crate::anatomy::arm;
 use crate::personality::Personality;
 use crate::target::{BodyId, Spot};
 use crate::vision::Seen;
@@ -57,6 +60,8 @@ impl Combo {
     fn after(first: (usize, bool), p: &BehaviourParams, rng: &mut impl Rng) -> Combo {
         let mut c = Combo::default();
         let mut last = first;
+        // No draw at all when combinations are off: the seed's random
+        // stream, and so its traces, stay as they were.
         while p.combination > 0.0 && c.len < c.queue.len() && rng.random::<f64>() < p.combination {
             let hand = if last.0 == 0 && rng.random::<f64>() >= 0.25 {
                 1
@@ -425,14 +430,11 @@ impl Behaviour {
         // What the punch needs beyond the lunge, the feet cover.
         self.lands = t;
         if let Some(r) = self.punch_reach(hand, &target, view, t, p) {
-            use crate::anatomy::arm;
-            let shoulder = self.body.on_trunk(DVec3::from_array(arm::shoulder(hand)));
-            // The glove lands a contact's width before the target's centre;
-            // aimed 5 cm deep, so a punch that needs 5 cm more still
-            // touches, and takes no step.
-            let short = (r.to - shoulder).length() - 0.95 * (arm::UPPER + arm::FOREARM);
-            let need = short - p.max_lunge - (super::CONTACT - 0.05);
-            if need > 0.05 {
+            // The glove lands a contact's width before the target's centre,
+            // aimed `AIM_DEPTH` deep: a punch that needs no more than that
+            // still touches, and takes no step.
+            let need = self.shortfall(hand, r.to).0 - p.max_lunge - (CONTACT - AIM_DEPTH);
+            if need > AIM_DEPTH {
                 self.lands = self.body.step_in(p, r.to, need, t);
             }
         }
@@ -499,15 +501,21 @@ impl Behaviour {
         })
     }
 
+    /// How far glove `hand`'s straight arm (less 5 %) falls short of `to`
+    /// from where its shoulder is now (the body may have stepped and
+    /// turned), m, negative within reach; and that shoulder.
+    fn shortfall(&self, hand: usize, to: DVec3) -> (f64, DVec3) {
+        let shoulder = self.body.on_trunk(DVec3::from_array(arm::shoulder(hand)));
+        let short = (to - shoulder).length() - 0.95 * (arm::UPPER + arm::FOREARM);
+        (short, shoulder)
+    }
+
     /// The lunge a punch at `to` with glove `hand` needs: the part of the
     /// shoulder-to-target distance beyond the straight arm (less 5 %),
     /// horizontally toward the target, at most `max_lunge`.
     fn lunge_for(&self, hand: usize, to: DVec3, t: f64, p: &BehaviourParams) -> Option<Reach> {
-        use crate::anatomy::arm;
-        // Where the shoulder is now: the body may have stepped and turned.
-        let shoulder = self.body.on_trunk(DVec3::from_array(arm::shoulder(hand)));
-        let reach = 0.95 * (arm::UPPER + arm::FOREARM);
-        let len = ((to - shoulder).length() - reach).clamp(0.0, p.max_lunge);
+        let (short, shoulder) = self.shortfall(hand, to);
+        let len = short.clamp(0.0, p.max_lunge);
         let dir = DVec3::new(to.x - shoulder.x, 0.0, to.z - shoulder.z).normalize_or_zero();
         (len > 0.0).then(|| Reach {
             from: DVec3::ZERO,

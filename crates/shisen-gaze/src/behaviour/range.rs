@@ -25,6 +25,9 @@ pub const SHOULDER_TRAVEL: f64 = 0.20;
 /// The gap a landing glove closes beyond its centre, m: the glove's
 /// radius (0.06, a 10-oz glove) and the target head's (0.10).
 pub const CONTACT: f64 = 0.16;
+/// How deep behind the contact a punch is aimed, m: a punch that falls
+/// this much short of its aim still touches, so it needs no step for it.
+pub const AIM_DEPTH: f64 = 0.05;
 /// A step into a punch, m: the lead foot's step in a stepping jab or an
 /// attack from long range: our estimate, about the footwork's longest
 /// step (`BehaviourParams::max_step`) and the punch's lunge

@@ -6,7 +6,7 @@
 
 use glam::DVec3;
 
-use shisen_gaze::behaviour::{CONTACT, Ranges};
+use shisen_gaze::behaviour::{AIM_DEPTH, CONTACT, Ranges};
 
 /// How long the body's part of a stepping punch leads the glove, s: in a
 /// straight punch thrown with a step the front foot steps or slides toward
@@ -20,15 +20,12 @@ use shisen_gaze::behaviour::{CONTACT, Ranges};
 pub const KINETIC_LEAD: f64 = 0.2;
 /// How far a rear-hand punch carries the head toward the lead side, m:
 /// the rear hip and shoulder turn forward and the head moves over the
-/// lead leg (our estimate from the turn, `SHOULDER_TRAVEL`'s 40 deg).
+/// lead leg (our estimate from the shoulders' 40-deg turn, behaviour/range.rs).
 pub const CROSS_SHIFT: f64 = 0.06;
 /// A feint's step, m: half a step in, and back.
 pub const FEINT_STEP: f64 = 0.15;
 /// A feint's glove twitch toward the target, m, out and back.
 pub const FEINT_TWITCH: f64 = 0.05;
-/// A step shorter than this is none, m: the punch is aimed this deep
-/// behind the contact and still touches.
-const NO_STEP: f64 = 0.05;
 
 /// A punch as the body throws it: where the glove goes, the body's step
 /// (the head's offset, out and back) and how long the step leads the glove.
@@ -70,7 +67,7 @@ pub fn throw(head: DVec3, to: DVec3, through: f64, rear: bool, body: bool) -> Th
     let dir = r / d;
     let to = to - dir * (contact - contact.min(full));
     let by = contact.min(full) - arm;
-    if by <= NO_STEP {
+    if by <= AIM_DEPTH {
         return Throw { to, ..none };
     }
     let shift = if rear { CROSS_SHIFT } else { 0.0 };

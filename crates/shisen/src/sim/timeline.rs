@@ -26,6 +26,16 @@ pub enum Hand {
     Right,
 }
 
+impl Hand {
+    /// The glove of this hand.
+    pub fn glove(self) -> Part {
+        match self {
+            Hand::Left => Part::LeftGlove,
+            Hand::Right => Part::RightGlove,
+        }
+    }
+}
+
 /// A script-movable body: an opponent part or a kinematic prop.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize, JsonSchema)]
 pub enum Part {
@@ -438,8 +448,6 @@ pub struct Timeline {
     pub(super) pushes: Vec<(PushPart, DVec3)>,
     /// The imposed translation of the trunk, if any.
     pub(super) carry: Option<Carry>,
-    /// Feints shown so far.
-    pub feints: u32,
 }
 
 impl Timeline {
@@ -460,7 +468,6 @@ impl Timeline {
             thrown: Vec::new(),
             pushes: Vec::new(),
             carry: None,
-            feints: 0,
         }
     }
 
@@ -582,11 +589,7 @@ impl Timeline {
                         ),
                         PunchTarget::Point(p) => (p, 0.0),
                     };
-                    let part = match hand {
-                        Hand::Left => Part::LeftGlove,
-                        Hand::Right => Part::RightGlove,
-                    };
-                    let b = part_body(world, &part);
+                    let b = part_body(world, &hand.glove());
                     let from = world.position(b).as_dvec3();
                     let dir = (aim - from).normalize_or(DVec3::NEG_Z);
                     // Thrown by the body from where it is going: a head
@@ -600,16 +603,11 @@ impl Timeline {
                     } else {
                         through
                     };
-                    let th = if glove_only {
-                        super::punch::throw(head, aim - dir * radius, depth, rear, false)
-                    } else {
-                        let mut th =
-                            super::punch::throw(head, aim - dir * radius, depth, rear, true);
-                        if moving.is_some() {
-                            (th.step, th.lead) = (DVec3::ZERO, 0.0);
-                        }
-                        th
-                    };
+                    let mut th =
+                        super::punch::throw(head, aim - dir * radius, depth, rear, !glove_only);
+                    if moving.is_some() {
+                        (th.step, th.lead) = (DVec3::ZERO, 0.0);
+                    }
                     let out = self
                         .track_mut(b)
                         .map(|tr| tr.punch_after(t, th.lead, th.to, speed));
@@ -628,17 +626,12 @@ impl Timeline {
                     if let Some(tr) = self.track_mut(head_b) {
                         tr.lunge(t, head + step, dur);
                     }
-                    let part = match hand {
-                        Hand::Left => Part::LeftGlove,
-                        Hand::Right => Part::RightGlove,
-                    };
-                    let b = part_body(world, &part);
+                    let b = part_body(world, &hand.glove());
                     let from = world.position(b).as_dvec3();
                     if let Some(tr) = self.track_mut(b) {
                         let twitch = from + dir * super::punch::FEINT_TWITCH;
                         tr.lunge(t + super::punch::KINETIC_LEAD, twitch, 0.06);
                     }
-                    self.feints += 1;
                 }
                 // Expanded into `Emotion` events when the scene loaded.
                 Action::EmotionScript { .. } => {}

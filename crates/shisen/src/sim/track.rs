@@ -147,16 +147,17 @@ impl Track {
     /// start over the same time (the body's step behind a punch).
     pub fn lunge(&mut self, t: f64, to: DVec3, dur: f64) {
         let from = self.interrupt(t);
-        self.queue.push_back(Seg::Reach {
-            from,
-            to,
-            t0: t,
-            dur,
-        });
+        self.out_and_back(from, to, t, dur);
+    }
+
+    /// Minimum-jerk out from `from` to `to` over `dur` from `t0`, and back
+    /// over the same time.
+    fn out_and_back(&mut self, from: DVec3, to: DVec3, t0: f64, dur: f64) {
+        self.queue.push_back(Seg::Reach { from, to, t0, dur });
         self.queue.push_back(Seg::Reach {
             from: to,
             to: from,
-            t0: t + dur,
+            t0: t0 + dur,
             dur,
         });
     }
@@ -183,18 +184,7 @@ impl Track {
         let t = t + lead.max(0.0);
         // Peak speed of a minimum-jerk move is 1.875 d / T (see math::min_jerk_d).
         let dur = (MIN_JERK_PEAK * (to - from).length() / speed).max(1e-3);
-        self.queue.push_back(Seg::Reach {
-            from,
-            to,
-            t0: t,
-            dur,
-        });
-        self.queue.push_back(Seg::Reach {
-            from: to,
-            to: from,
-            t0: t + dur,
-            dur,
-        });
+        self.out_and_back(from, to, t, dur);
         self.punch = Some((from, dur, t + dur));
         dur
     }
