@@ -99,10 +99,12 @@ fn mouse_and_keyboard_drive_your_avatar() {
 /// A short bout played through the real window with xdotool: two rounds
 /// of 6 s with 3 s between, against a novice; stepping in (E), punching
 /// with the keys (F, J) while the pointer rests over the VH and stepping
-/// out (Q): a novice boxer holds long range, where only a step in lands. The statistics
-/// the app writes at each bell (`--stats`) show your punches thrown in
-/// round 1 and more by the end, punches landing, and both bells that end
-/// the rounds; then the menu (Esc) quits (Q) and the app exits 0.
+/// out (Q). The statistics the app writes at each bell (`--stats`) show
+/// your punches thrown in round 1 and more by the end, each judged once
+/// (landed, blocked or missed), and both bells that end the rounds; then
+/// the menu (Esc) quits (Q) and the app exits 0. Whether punches land is
+/// the model's business (scenes, soaks), not this test's: a novice that
+/// holds long range makes it a matter of luck.
 #[test]
 #[ignore = "needs an X display and xdotool, and takes over the keyboard: run under xvfb-run"]
 fn a_short_bout_through_the_bell_counts_punches_and_quits_from_the_menu() {
@@ -158,8 +160,8 @@ fn a_short_bout_through_the_bell_counts_punches_and_quits_from_the_menu() {
     let thrown = |v: &serde_json::Value, who: &str| {
         v[who]["jabs"]["thrown"].as_u64().unwrap() + v[who]["power"]["thrown"].as_u64().unwrap()
     };
-    let landed = |v: &serde_json::Value, who: &str| {
-        v[who]["jabs"]["landed"].as_u64().unwrap() + v[who]["power"]["landed"].as_u64().unwrap()
+    let landed = |side: &serde_json::Value| {
+        side["jabs"]["landed"].as_u64().unwrap() + side["power"]["landed"].as_u64().unwrap()
     };
     // Punch, left and right, until the bell ends round 1, then round 2
     // (the simulation may run slower than the wall clock in a debug build).
@@ -188,9 +190,15 @@ fn a_short_bout_through_the_bell_counts_punches_and_quits_from_the_menu() {
         thrown(&end["total"], "you") > thrown(&round_1["total"], "you"),
         "your punches in round 2 were not counted: {round_1} -> {end}"
     );
+    // Every punch of yours is judged once: it lands, is blocked or misses
+    // (evaded, or short); at most one a glove may still be in the air at
+    // the last bell.
+    let you = &end["total"]["you"];
+    let judged = landed(you) + you["blocked"].as_u64().unwrap() + you["missed"].as_u64().unwrap();
+    let all = thrown(&end["total"], "you");
     assert!(
-        landed(&end["total"], "you") + landed(&end["total"], "vh") > 0,
-        "no punch landed in the bout: {end}"
+        judged <= all && all - judged <= 2,
+        "{all} punches thrown, {judged} judged: {end}"
     );
     // The menu quits.
     xdo(&["key", "Escape"]);

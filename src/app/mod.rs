@@ -477,7 +477,9 @@ impl eframe::App for ShisenApp {
 
         // Input -> intent -> events, then the clock steps the simulation;
         // the frame drawn below shows the result.
-        let typing = ctx.egui_wants_keyboard_input();
+        // Only a text field takes the keys from the bout: a focused slider
+        // or button must not swallow the dodge and punch keys.
+        let typing = ctx.text_edit_focused();
         let (pointer, wheel) = viewport.pointer(&ctx, &self.session, self.collector.active_glove);
         let now = Instant::now();
         let pad = self.pads.poll(now);

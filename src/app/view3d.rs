@@ -274,7 +274,9 @@ impl Viewport {
                 BlitPaint(self.blit.bind(picture)),
             ));
         }
-        ui.allocate_rect(rect, egui::Sense::click_and_drag());
+        // Clicks and drags, but never keyboard focus: a focused view would
+        // make egui take the dodge keys (the arrows move egui's focus).
+        ui.allocate_rect(rect, egui::Sense::CLICK | egui::Sense::DRAG);
         self.last = Some((rect, frame.camera));
         let size = Vec2::new(rect.width(), rect.height());
         let painter = ui.painter_at(rect);
