@@ -38,7 +38,7 @@ pub struct Personality {
     /// slips and counters; a weak one covers up. A probability.
     #[schemars(range(min = 0.0, max = 1.0))]
     pub evade: f64,
-    /// Chance the VH counters out of a slip, 0-1 (a probability).
+    /// Chance the VH counters out of a slip or a block, 0-1 (a probability).
     /// Default 0.3.
     #[schemars(range(min = 0.0, max = 1.0))]
     pub counter: f64,

@@ -332,7 +332,7 @@ impl Behaviour {
                 hand,
                 until,
                 ..
-            } => self.guarding((threat, hand, until), pers, view, t),
+            } => self.guarding((threat, hand, until), p, pers, view, t, rng),
             Plan::Attack {
                 hand,
                 target,

@@ -273,13 +273,17 @@ impl Behaviour {
 
     /// A guard against `threat` with glove `hand` held until `until`: the
     /// gaze on the incoming glove (gaze.md 5), then the glove back to its
-    /// stance. The action's request; `None` once idle.
+    /// stance, and (a strong boxer, as out of a slip) a counter with the
+    /// other hand while the opponent's glove is still on its way back: the
+    /// block-and-counter. The action's request; `None` once idle.
     pub(super) fn guarding(
         &mut self,
         (threat, hand, until): (BodyId, usize, f64),
+        p: &BehaviourParams,
         pers: &Personality,
         view: &OpponentView,
         t: f64,
+        rng: &mut impl Rng,
     ) -> Option<TopDown> {
         if t >= until {
             let from = self.glove(hand, t);
@@ -291,6 +295,10 @@ impl Behaviour {
                 back: false,
             });
             self.plan = Plan::Idle;
+            let own = self.control == super::Control::Own;
+            if own && p.attacks && rng.random::<f64>() < pers.counter {
+                return Some(self.start_attack((1 - hand, false), p, pers, view, t, rng));
+            }
             None
         } else {
             Some(on_threat(threat, view, pers))
