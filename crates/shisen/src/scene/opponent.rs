@@ -25,8 +25,8 @@ pub enum Level {
     #[default]
     Amateur,
     /// Quick (reactions near 0.18 s), evades most punches it reads and
-    /// counters half its slips, accurate, fit; near a professional's 55.6
-    /// punches a round (CompuBox averages).
+    /// counters half its slips and blocks, accurate, fit; near a
+    /// professional's 55.6 punches a round (CompuBox averages).
     Pro,
 }
 
@@ -184,7 +184,7 @@ struct LevelValues {
     punch_time: f64,
     /// Aim's spread, m.
     spread: f64,
-    /// Shares of seen punches evaded, and of slips countered.
+    /// Shares of seen punches evaded, and of slips and blocks countered.
     evade: f64,
     counter: f64,
     /// The gaze anchor's amount through an evasion.
@@ -236,7 +236,7 @@ impl Level {
             },
             Level::Pro => LevelValues {
                 reaction: 0.11,
-                attack_rate: 0.5,
+                attack_rate: 0.35,
                 punch_time: 0.45,
                 spread: 0.02,
                 evade: 0.8,
