@@ -236,7 +236,7 @@ impl Level {
             },
             Level::Pro => LevelValues {
                 reaction: 0.11,
-                attack_rate: 0.35,
+                attack_rate: 0.24,
                 punch_time: 0.45,
                 spread: 0.02,
                 evade: 0.8,
