@@ -35,12 +35,8 @@ fn by_name<T: Copy + std::fmt::Debug>(all: &[T], name: &str) -> Option<T> {
 /// Parse subject data CSV (format in the module docs); errors name the
 /// file, line, column (1-based field number) and field (the header).
 pub fn parse_csv(text: &str, file: &Path) -> Result<SubjectData, LoadError> {
-    let err = |line: usize, col: usize, field: &str, message: String| LoadError::Invalid {
-        file: file.display().to_string(),
-        line,
-        col,
-        field: field.into(),
-        message,
+    let err = |line: usize, col: usize, field: &str, message: String| {
+        LoadError::invalid(file, (line, col), field, message)
     };
     let mut rows = text
         .lines()
@@ -180,14 +176,13 @@ pub fn calibrate_file(base: &FaceParams, path: &Path) -> Result<FaceParams, Load
             FaceError::Invalid { field, message } => (field, message),
             other => ("-".to_string(), other.to_string()),
         };
-        let (line, col) = csv_place(&text, &field);
-        LoadError::Invalid {
-            file: path.display().to_string(),
-            line,
-            col,
+        let at = csv_place(&text, &field);
+        LoadError::invalid(
+            path,
+            at,
             field,
-            message: format!("the calibrated database is implausible: {message}"),
-        }
+            format!("the calibrated database is implausible: {message}"),
+        )
     })?;
     Ok(p)
 }

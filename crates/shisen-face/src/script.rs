@@ -115,12 +115,8 @@ pub fn parse_script(text: &str, file: &Path) -> Result<Vec<ScriptStep>, LoadErro
         if fields.is_empty() {
             continue;
         }
-        let err = |col: usize, field: &str, message: String| LoadError::Invalid {
-            file: file.display().to_string(),
-            line: n + 1,
-            col,
-            field: field.into(),
-            message,
+        let err = |col: usize, field: &str, message: String| {
+            LoadError::invalid(file, (n + 1, col), field, message)
         };
         if fields.len() < 3 {
             return Err(err(

@@ -60,16 +60,9 @@ impl FaceError {
     /// errors are returned unchanged.
     pub fn located(self, text: &str, file: &std::path::Path) -> FaceError {
         match self {
-            FaceError::Invalid { field, message } => {
-                let (line, col) = shisen_gaze::util::locate::locate(text, &field);
-                FaceError::Parse(shisen_gaze::util::ron::LoadError::Invalid {
-                    file: file.display().to_string(),
-                    line,
-                    col,
-                    field,
-                    message,
-                })
-            }
+            FaceError::Invalid { field, message } => FaceError::Parse(
+                shisen_gaze::util::ron::LoadError::at_field(file, text, field, message),
+            ),
             other => other,
         }
     }

@@ -35,6 +35,36 @@ pub enum LoadError {
 }
 
 impl LoadError {
+    /// What is wrong with `field` of `file`, at `line` and `col` (1-based):
+    /// the one constructor of a located error.
+    pub fn invalid(
+        file: &Path,
+        (line, col): (usize, usize),
+        field: impl Into<String>,
+        message: impl Into<String>,
+    ) -> LoadError {
+        LoadError::Invalid {
+            file: file.display().to_string(),
+            line,
+            col,
+            field: field.into(),
+            message: message.into(),
+        }
+    }
+
+    /// What is wrong with `field` of `file`, placed where `field` is
+    /// written in the file's `text` ([`super::locate::locate`]).
+    pub fn at_field(
+        file: &Path,
+        text: &str,
+        field: impl Into<String>,
+        message: impl Into<String>,
+    ) -> LoadError {
+        let field = field.into();
+        let at = super::locate::locate(text, &field);
+        LoadError::invalid(file, at, field, message)
+    }
+
     /// An unreadable file that another file names: reported at the naming
     /// file's `field` (its line and column), with the OS error once.
     pub fn named_by(self, file: &Path, text: &str, field: &str) -> LoadError {
@@ -42,16 +72,12 @@ impl LoadError {
             LoadError::Io {
                 file: missing,
                 reason,
-            } => {
-                let (line, col) = super::locate::locate(text, field);
-                LoadError::Invalid {
-                    file: file.display().to_string(),
-                    line,
-                    col,
-                    field: field.to_string(),
-                    message: format!("cannot read {missing}: {reason}"),
-                }
-            }
+            } => LoadError::at_field(
+                file,
+                text,
+                field,
+                format!("cannot read {missing}: {reason}"),
+            ),
             other => other,
         }
     }

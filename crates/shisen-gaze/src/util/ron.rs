@@ -25,13 +25,8 @@ pub fn parse_ron<T: DeserializeOwned + Serialize + JsonSchema>(
 
 /// Parse RON text into `T` with only the checks its `Deserialize` makes.
 fn parse_unchecked<T: DeserializeOwned>(text: &str, file: &Path) -> Result<T, LoadError> {
-    let file_s = file.display().to_string();
-    let invalid = |line, col, field: String, message: String| LoadError::Invalid {
-        file: file_s.clone(),
-        line,
-        col,
-        field,
-        message,
+    let invalid = |line, col, field: String, message: String| {
+        LoadError::invalid(file, (line, col), field, message)
     };
     // Optional fields are written plainly (`gains: Gains(...)`, not `Some(...)`).
     let options =

@@ -81,13 +81,7 @@ pub fn check<T: Serialize + JsonSchema>(
     file: &Path,
 ) -> Result<(), LoadError> {
     let places = Locations::scan(text);
-    let invalid = |(line, col), field, message| LoadError::Invalid {
-        file: file.display().to_string(),
-        line,
-        col,
-        field,
-        message,
-    };
+    let invalid = |at, field: String, message: String| LoadError::invalid(file, at, field, message);
     // Serialised for the check, NaN and the infinities become `null`,
     // which an optional number allows: refused where they are written.
     if let Some((field, line, col)) = places.non_finite() {

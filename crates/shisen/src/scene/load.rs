@@ -9,7 +9,6 @@ use super::validate::validate;
 use crate::physics::control::Gains;
 use crate::sim::timeline::{Action, Event};
 use crate::sim::{Model, Params, Sim};
-use shisen_gaze::util::locate::locate;
 use shisen_gaze::util::ron::{LoadError, parse_ron};
 
 impl Scene {
@@ -69,14 +68,7 @@ impl LoadedScene {
                     .map_err(|e| e.named_by(file, text, "gains_file"))?;
                 let g: Gains = parse_ron(&gains_text, &path)?;
                 if let Err(m) = crate::physics::plausible::check_gains(&g) {
-                    let (line, col) = locate(&gains_text, &m.field);
-                    return Err(LoadError::Invalid {
-                        file: path.display().to_string(),
-                        line,
-                        col,
-                        field: m.field,
-                        message: m.message,
-                    });
+                    return Err(LoadError::at_field(&path, &gains_text, m.field, m.message));
                 }
                 g
             }
@@ -188,16 +180,7 @@ fn load_face(
     use shisen_face::{Face, FaceError, mesh::MeshParams, params::FaceParams};
     let face_err = |e: FaceError| match e {
         FaceError::Parse(l) => l,
-        other => {
-            let (line, col) = locate(text, "vh.face");
-            LoadError::Invalid {
-                file: file.display().to_string(),
-                line,
-                col,
-                field: "vh.face".into(),
-                message: other.to_string(),
-            }
-        }
+        other => LoadError::at_field(file, text, "vh.face", other.to_string()),
     };
     let params = match &c.database {
         Some(rel) => {
@@ -214,26 +197,18 @@ fn load_face(
             shisen_face::import::import(&resolve(m), &resolve(l), params).map_err(face_err)
         }
         #[cfg(not(feature = "mesh-io"))]
-        (Some(_), Some(_)) => {
-            let (line, col) = locate(text, "vh.face.mesh");
-            Err(LoadError::Invalid {
-                file: file.display().to_string(),
-                line,
-                col,
-                field: "vh.face.mesh".into(),
-                message: "this build has no mesh import (enable the `mesh-io` feature)".into(),
-            })
-        }
+        (Some(_), Some(_)) => Err(LoadError::at_field(
+            file,
+            text,
+            "vh.face.mesh",
+            "this build has no mesh import (enable the `mesh-io` feature)",
+        )),
         (None, None) => Ok(Face::new(MeshParams { rows: c.rows }, params)),
-        _ => {
-            let (line, col) = locate(text, "vh.face");
-            Err(LoadError::Invalid {
-                file: file.display().to_string(),
-                line,
-                col,
-                field: "vh.face".into(),
-                message: "`mesh` and `landmarks` go together".into(),
-            })
-        }
+        _ => Err(LoadError::at_field(
+            file,
+            text,
+            "vh.face",
+            "`mesh` and `landmarks` go together",
+        )),
     }
 }

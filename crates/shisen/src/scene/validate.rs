@@ -20,14 +20,8 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
     // Errors are placed at the field they name, as the parser's are.
     let places = Locations::scan(text);
     let err = |field: String, message: String| {
-        let (line, col) = places.find(&field);
-        LoadError::Invalid {
-            file: file.display().to_string(),
-            line,
-            col,
-            field,
-            message,
-        }
+        let at = places.find(&field);
+        LoadError::invalid(file, at, field, message)
     };
     if scene.gains.is_some() && scene.gains_file.is_some() {
         return Err(err(

@@ -146,16 +146,8 @@ impl LoadedStudy {
         let scene_path = dir.join(&study.scene);
         let base = LoadedScene::load(&scene_path)?;
         let scene_text = read_text(&scene_path)?;
-        let invalid = |field: String, message: String| {
-            let (line, col) = shisen_gaze::util::locate::locate(&text, &field);
-            LoadError::Invalid {
-                file: path.display().to_string(),
-                line,
-                col,
-                field,
-                message,
-            }
-        };
+        let invalid =
+            |field: String, message: String| LoadError::at_field(path, &text, field, message);
         let template = scene_value(&base.scene);
         let mut axes = Vec::new();
         for (i, v) in study.vary.iter().enumerate() {
@@ -325,18 +317,16 @@ impl LoadedStudy {
                 .iter()
                 .position(|f| field.starts_with(f.as_str()) || f.starts_with(field.as_str()))
                 .map_or("scene".to_string(), |i| format!("vary[{i}]"));
-            let (line, col) = shisen_gaze::util::locate::locate(&self.text, &at);
             let values: Vec<String> = fields.iter().map(|(f, x)| format!("{f} = {x}")).collect();
-            LoadError::Invalid {
-                file: self.file.display().to_string(),
-                line,
-                col,
-                field: at,
-                message: format!(
+            LoadError::at_field(
+                &self.file,
+                &self.text,
+                at,
+                format!(
                     "run {k} ({}, seed {seed}): {field}: {message}",
                     values.join(", ")
                 ),
-            }
+            )
         })
     }
 
@@ -415,13 +405,8 @@ pub fn edit_scene(
     seed: Option<u64>,
     label: &str,
 ) -> Result<LoadedScene, LoadError> {
-    let invalid = |field: &str, message: String| LoadError::Invalid {
-        file: label.to_string(),
-        line: 1,
-        col: 1,
-        field: field.to_string(),
-        message,
-    };
+    let invalid =
+        |field: &str, message: String| LoadError::invalid(Path::new(label), (1, 1), field, message);
     let mut scene = base.scene.clone();
     scene.gains = Some(base.gains.clone());
     scene.gains_file = None;
