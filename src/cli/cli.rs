@@ -221,6 +221,15 @@ pub enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Shove the physical VH (`pelvis: Balanced`) on the trunk from the
+    /// front, behind and either side with rising impulses, and print what
+    /// it does: holds with its feet in place, steps, or falls (a Markdown
+    /// table, beside people's thresholds).
+    Pushes {
+        /// Scene whose parameters the VH uses (default: the embedded one).
+        #[arg(long)]
+        scene: Option<PathBuf>,
+    },
     /// Spar against a seeded random opponent for N simulated minutes,
     /// checking invariants every tick, and print a summary.
     Soak {

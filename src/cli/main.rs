@@ -236,6 +236,7 @@ fn main() -> ExitCode {
             profile,
             out,
         }) => verdict(fidelity_cmd(scene, profile, out)),
+        Some(Command::Pushes { scene }) => report(pushes_cmd(scene)),
         Some(Command::Soak {
             minutes,
             seed,
@@ -311,6 +312,20 @@ fn schema_cmd(file: Option<shisen_app::schema::FileKind>, markdown: bool) -> Res
 }
 
 /// `shisen fidelity`: the battery, its table, and its files if asked.
+fn pushes_cmd(scene: Option<std::path::PathBuf>) -> Result<()> {
+    let loaded = match &scene {
+        Some(p) => load(&p.display().to_string())?,
+        None => shisen::scene::LoadedScene::default_scene(),
+    };
+    let model = shisen::tools::fidelity::model_of(&loaded, None);
+    let table = shisen::tools::fidelity::push_table(&model);
+    if shisen::tools::stop_requested() {
+        return Err(Interrupted("before every shove ran; nothing printed".into()).into());
+    }
+    print!("{table}");
+    Ok(())
+}
+
 fn fidelity_cmd(
     scene: Option<std::path::PathBuf>,
     profile: Option<ProfileArg>,

@@ -217,6 +217,10 @@ pub struct BodyCommand {
     /// The body's heading: its turn about +Y from facing +Z, rad (the
     /// pelvis, the stance and the trunk turn with it; the feet step round).
     pub facing: f64,
+    /// Where the feet step to stay under, if not the pelvis: a physical
+    /// body's capture point (B4), so its feet go where its weight is
+    /// going, not where the plan wished it were.
+    pub support: Option<DVec3>,
 }
 
 /// One foot: planted where it is, or swinging.
@@ -268,6 +272,11 @@ pub struct LowerBody {
 /// (about 25 deg of lift: a rear heel in a cross).
 const HEEL_STEP: f64 = 0.08;
 
+/// A swinging foot this near its target that meets the canvas has landed,
+/// m (our choice: a sole's half width; farther off it is scuffing the
+/// canvas on its way).
+const LANDED: f64 = 0.05;
+
 /// The waist joint at rest, world (the trunk's pivot).
 pub const WAIST_REST: DVec3 = DVec3::new(0.0, 1.0, 0.0);
 
@@ -317,14 +326,18 @@ impl LowerBody {
                 f.at = f.swing.take().map_or(f.at, |s| s.to);
             }
         }
+        let base = cmd.support.map_or(self.pelvis, |s| s.with_y(0.0));
         if self.feet.iter().all(|f| f.swing.is_none()) {
-            let ahead = self.pelvis + cmd.pelvis_velocity * p.step_time;
+            let ahead = match cmd.support {
+                Some(_) => base,
+                None => self.pelvis + cmd.pelvis_velocity * p.step_time,
+            };
             // A leg stretched so far that its heel lifts more than a rear
             // heel does in a punch steps too.
             let legs = self.legs(p);
             let far = [0, 1]
                 .map(|k| {
-                    let at = self.pelvis + place(p, k, self.facing);
+                    let at = base + place(p, k, self.facing);
                     let off = (at - self.feet[k].at).length();
                     let stretched = legs[k].heel.y > HEEL_STEP;
                     // Of two feet as far off, the one on the side the body
@@ -402,6 +415,31 @@ impl LowerBody {
         if self.feet[k].swing.is_none() {
             self.feet[k].at = at.with_y(0.0);
         }
+    }
+
+    /// Foot `k` has met the canvas at `at`: a swing past `after` of its
+    /// time ends there (touchdown ends a physical step, as the contact
+    /// switch does in SIMBICON: Yin, Loken & van de Panne 2007, ACM TOG
+    /// 26:105). Returns whether a swing ended.
+    pub fn touch_down(&mut self, p: &BodyParams, k: usize, at: DVec3, after: f64, t: f64) -> bool {
+        let f = &mut self.feet[k];
+        match f.swing {
+            Some(s)
+                if (t - s.t0) / p.step_time >= after
+                    && (s.to - at).with_y(0.0).length() < LANDED =>
+            {
+                f.swing = None;
+                f.at = at.with_y(0.0);
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// Put the pelvis's ground point at `to` for this tick: a physical
+    /// body shifting its weight onto one foot before it lifts the other.
+    pub fn shift_weight(&mut self, to: DVec3) {
+        self.pelvis = to.with_y(0.0);
     }
 
     /// Call off the footwork steps that began at `t`: the feet stay where
@@ -535,6 +573,7 @@ impl Carried {
             waist: [DVec3::ZERO; 3],
             crouch: (WAIST_REST.y - waist_y).clamp(0.0, 0.3),
             facing: (toward.x - self.pelvis.x).atan2(toward.z - self.pelvis.z),
+            support: None,
         };
         self.lower.step(p, &cmd, t, dt);
         // The trunk from the waist joint to the head, exactly.

@@ -2,6 +2,7 @@
 //! standing still, and how hard a shove must be before it steps.
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use super::Row;
 use crate::physics::lower::Pelvis;
@@ -59,9 +60,89 @@ fn step_threshold(model: &Model) -> f64 {
             while sim.time() < 3.0 {
                 sim.step();
             }
-            sim.balance.recovery_steps > 0
+            stepped(&sim) > 0
         })
         .unwrap_or(f64::NAN)
+}
+
+/// Steps the body took: recovery steps (B4) and the footwork's steps
+/// under the capture point.
+fn stepped(sim: &Sim) -> u32 {
+    sim.balance.recovery_steps + sim.lower.steps
+}
+
+/// The sides a shove comes from, and the way it pushes (the VH faces +Z,
+/// its left foot leads at +X).
+const SIDES: [(&str, DVec3); 4] = [
+    ("from the front", DVec3::NEG_Z),
+    ("from behind", DVec3::Z),
+    ("from its left", DVec3::NEG_X),
+    ("from its right", DVec3::X),
+];
+
+/// The seeds each shove is tried with (the body's sway and the stepping
+/// that follows differ from seed to seed).
+const PUSH_SEEDS: [u64; 3] = [1, 2, 3];
+
+/// Shoves on the trunk, N s.
+const SHOVES: [f64; 6] = [15.0, 30.0, 45.0, 60.0, 75.0, 90.0];
+
+/// The push-recovery table (docs/model/balance.md, "Pushes, measured"):
+/// a physical VH of this model shoved on the trunk at 1 s from each side
+/// with rising impulses, and what it did in the next 4 s, over three
+/// seeds: held with its feet in place, stepped (in how many runs), or fell
+/// (in how many). Markdown. A stop request ([`crate::tools::request_stop`])
+/// cuts the runs short: the caller must not print the table then.
+pub fn push_table(model: &Model) -> String {
+    let mut out = String::from("| shove | ");
+    let heads: Vec<String> = SHOVES
+        .iter()
+        .map(|j| format!("{j:.0} N s ({:.2} m/s)", j / MASS))
+        .collect();
+    out += &heads.join(" | ");
+    out += " |\n|---|";
+    out += &"---|".repeat(SHOVES.len());
+    out += "\n";
+    // Every run at once: (side, shove, seed) -> (fell, steps).
+    let jobs: Vec<(DVec3, f64, u64)> = SIDES
+        .iter()
+        .flat_map(|&(_, dir)| SHOVES.iter().map(move |&j| (dir, j)))
+        .flat_map(|(dir, j)| PUSH_SEEDS.iter().map(move |&s| (dir, j, s)))
+        .collect();
+    let results: Vec<(bool, u32)> = jobs
+        .par_iter()
+        .map(|&(dir, j, seed)| {
+            let mut m = model.clone();
+            m.seed = seed;
+            let mut sim = standing(&m, dir * j);
+            while sim.time() < 5.0 && !crate::tools::stop_requested() {
+                sim.step();
+            }
+            (sim.balance.knockdowns > 0, stepped(&sim))
+        })
+        .collect();
+    let mut runs = results.chunks(PUSH_SEEDS.len());
+    for (name, _) in SIDES {
+        let cells: Vec<String> = SHOVES
+            .iter()
+            .map(|_| {
+                let runs = runs.next().expect("one result per run");
+                let n = PUSH_SEEDS.len();
+                let falls = runs.iter().filter(|r| r.0).count();
+                let stepped = runs.iter().filter(|r| r.1 > 0).count();
+                match (falls, stepped) {
+                    (0, 0) => "held".to_string(),
+                    (0, s) if s == n => "steps".to_string(),
+                    (0, s) => format!("steps {s}/{n}"),
+                    (f, _) if f == n => "falls".to_string(),
+                    (f, _) => format!("falls {f}/{n}"),
+                }
+            })
+            .collect();
+        out += &format!("| {name} | {} |\n", cells.join(" | "));
+    }
+    out += &format!("\nPeople: {STEP}.\n");
+    out
 }
 
 /// The balance rows.

@@ -15,6 +15,7 @@ use crate::sim::{BodySpec, Model, Profile, PropShape, Sample, Sim};
 use crate::tools::plot::{Panel, Series, Stroke, chart};
 
 mod balance;
+pub use balance::push_table;
 mod blow;
 mod ring;
 mod tvor;
