@@ -463,8 +463,8 @@ pub fn soak_cmd(
         r.evasions, r.steps.0, r.steps.1, r.farthest
     );
     println!(
-        "  effort: staggered {} times, fatigue {:.2} at the end; knocked down {} times, up {} times",
-        r.staggers.0, r.staggers.1, r.knockdowns.0, r.knockdowns.1
+        "  effort: staggered {} times, fatigue {:.2} at the end; knocked down {} times ({} with no blow in the second before), up {} times",
+        r.staggers.0, r.staggers.1, r.knockdowns.0, r.unprovoked, r.knockdowns.1
     );
     let per_min = 60.0 / r.sim_time.max(1e-9);
     let shares = r.card.range_shares();

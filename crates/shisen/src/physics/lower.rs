@@ -299,6 +299,15 @@ impl LowerBody {
         }
     }
 
+    /// Standing at rest in the stance again (a physics reset), the count of
+    /// steps running on.
+    pub fn restarted(&self, p: &BodyParams) -> Self {
+        LowerBody {
+            steps: self.steps,
+            ..LowerBody::new(p)
+        }
+    }
+
     /// Advance one tick toward `cmd`: the pelvis goes where it is sent,
     /// the waist follows its law (W1), the feet step to stay under the
     /// pelvis (W2).

@@ -276,8 +276,8 @@ impl Sim {
             *t = JointTarget::default();
         }
         self.neck = NeckState::default();
-        self.lower = LowerBody::new(&self.model.params.body);
-        self.balance = Balance::default();
+        self.lower = self.lower.restarted(&self.model.params.body);
+        self.balance = self.balance.restarted();
         self.knocked_at = None;
         self.counted = (0, 0);
         self.resets += 1;

@@ -9,6 +9,7 @@ use rand::{RngExt, SeedableRng};
 use crate::physics::body::{HARD_STOP_MARGIN_DEG, Seg};
 use crate::scene::LoadedScene;
 use crate::scene::opponent::Opponent;
+use crate::sim::blows::Fighter;
 use crate::sim::timeline::{Action, Event, Hand, Part, PunchTarget};
 use crate::sim::{DT, Sample, Sim};
 use shisen_face::tables::Emotion;
@@ -193,6 +194,9 @@ pub struct SoakReport {
     pub head_hit_ticks: u64,
     /// Times the VH was knocked down, and got up (a physical body only).
     pub knockdowns: (u32, u32),
+    /// Knockdowns with no blow of the opponent's (a hit or a blocked
+    /// punch) in the [`PROVOKED`] s before: falls of the body's own making.
+    pub unprovoked: u32,
     /// Physics explosions recovered from.
     pub resets: u32,
     /// Blows both ways (hits landed and punches blocked, `sim::blows`).
@@ -278,6 +282,11 @@ const MAX_EXCURSION_DEG: f64 = 2.0 * HARD_STOP_MARGIN_DEG as f64 - 2.0;
 /// The most resident memory may grow past the warm-up, KiB.
 const MAX_GROWTH_KIB: u64 = 1024;
 
+/// A knockdown this soon after a blow of the opponent's is the blow's, s
+/// (our choice: a struck body that staggers and falls is down within about
+/// a second).
+const PROVOKED: f64 = 1.0;
+
 /// A joint opening wider than this is a solver failure, mm: a segment
 /// visibly detaching (the eyeball is 22 mm across). Under the hardest
 /// blows the solver lets a joint open a few millimetres for a tick or two
@@ -313,9 +322,17 @@ pub fn soak(
     // Memory is first measured after a warm-up (a minute, or half the run).
     let warm = (60_000.min(ticks / 2) / 1000) * 1000;
     let mut was_staggered = false;
+    let mut last_blow = f64::NEG_INFINITY;
     for i in 0..ticks {
         bot.step(&mut sim);
+        let down_before = sim.balance.knockdowns;
         let s = sim.step().clone();
+        if s.blows.iter().any(|b| b.by == Fighter::Opponent) {
+            last_blow = s.t;
+        }
+        if sim.balance.knockdowns > down_before && s.t - last_blow > PROVOKED {
+            r.unprovoked += 1;
+        }
         let (excess, gap_mm) = check(&s, &sim, &mut r.failures);
         r.worst_limit_excess_deg = r.worst_limit_excess_deg.max(excess);
         r.worst_joint_gap_mm = r.worst_joint_gap_mm.max(gap_mm);

@@ -138,6 +138,17 @@ const UPRIGHT_MAX: f32 = 250.0;
 const SETTLE: f64 = 1.5;
 
 impl Balance {
+    /// A fresh controller (a physics reset), its counts of knockdowns,
+    /// get-ups and recovery steps running on (the soak reports them).
+    pub fn restarted(&self) -> Balance {
+        Balance {
+            knockdowns: self.knockdowns,
+            get_ups: self.get_ups,
+            recovery_steps: self.recovery_steps,
+            ..Balance::default()
+        }
+    }
+
     /// Measure the body: centre of mass, capture point, tilt, and how far
     /// the capture point is outside the planted feet's polygon.
     pub fn measure(world: &World, legs: &Legs) -> BalanceState {
