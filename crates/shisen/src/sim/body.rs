@@ -7,7 +7,7 @@ use std::f64::consts::{PI, TAU};
 use glam::{DQuat, DVec3};
 
 use super::Sim;
-use crate::physics::balance::{Balance, Stance};
+use crate::physics::balance::{Balance, Stance, share_between};
 use crate::physics::body::OpponentPart;
 use crate::physics::body::Seg;
 use crate::physics::legs::{Joint, Part};
@@ -31,15 +31,6 @@ const LIFT_LOAD: f64 = 0.3;
 /// Where a weight shift before a step puts the body, as the share of the
 /// way from the lifting foot to the stance foot.
 const SHIFT_TO: f64 = 0.85;
-
-/// The two feet's shares of the weight from where `weight` (a ground
-/// point) lies between them.
-fn load_share(a: DVec3, b: DVec3, weight: DVec3) -> [f64; 2] {
-    let (a, b, w) = (a.with_y(0.0), b.with_y(0.0), weight.with_y(0.0));
-    let ab = b - a;
-    let u = ((w - a).dot(ab) / ab.length_squared().max(1e-9)).clamp(0.0, 1.0);
-    [1.0 - u, u]
-}
 
 /// The referee's count after a knockdown that a boxer must wait out, even
 /// on its feet before it, s: the mandatory eight-count (AIBA Technical &
@@ -239,8 +230,8 @@ impl Sim {
                 feet,
             ) && !self.balance.recovering(t)
             {
-                let load = load_share(a, b, state.capture)[k];
-                if load > LIFT_LOAD {
+                let load = share_between(a.as_vec3(), b.as_vec3(), state.capture.as_vec3())[k];
+                if f64::from(load) > LIFT_LOAD {
                     self.lower.hold_feet(t + dt);
                     let (lift, stance) = if k == 0 { (a, b) } else { (b, a) };
                     self.lower.shift_weight(lift + (stance - lift) * SHIFT_TO);

@@ -551,17 +551,25 @@ fn weight_shares(
     com: Vec3,
 ) -> [f32; 2] {
     match on {
-        [true, true] => {
-            let a = legs.foot_ground(phys, 0).0.as_vec3().with_y(0.0);
-            let b = legs.foot_ground(phys, 1).0.as_vec3().with_y(0.0);
-            let ab = b - a;
-            let u = ((com.with_y(0.0) - a).dot(ab) / ab.length_squared().max(1e-6)).clamp(0.0, 1.0);
-            [1.0 - u, u]
-        }
+        [true, true] => share_between(
+            legs.foot_ground(phys, 0).0.as_vec3(),
+            legs.foot_ground(phys, 1).0.as_vec3(),
+            com,
+        ),
         [true, false] => [1.0, 0.0],
         [false, true] => [0.0, 1.0],
         [false, false] => [0.0, 0.0],
     }
+}
+
+/// Two feet's shares of the weight (ground points `a`, `b`) from where
+/// `weight` (the centre of mass, or the capture point) lies between them
+/// on the canvas: its place along the line from one foot to the other.
+pub fn share_between(a: Vec3, b: Vec3, weight: Vec3) -> [f32; 2] {
+    let (a, b) = (a.with_y(0.0), b.with_y(0.0));
+    let ab = b - a;
+    let u = ((weight.with_y(0.0) - a).dot(ab) / ab.length_squared().max(1e-6)).clamp(0.0, 1.0);
+    [1.0 - u, u]
 }
 
 /// The torque that holds `parts` (hanging from `pivot`) against gravity.
