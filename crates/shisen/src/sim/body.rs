@@ -131,16 +131,14 @@ impl Sim {
                 .behaviour(&self.model.params.effort, &self.model.params.behaviour);
             self.behaviour.stagger(&b, None, t, t + EIGHT_COUNT);
         }
-        for k in 0..2 {
+        let mut twisted = [false; 2];
+        for (k, twist) in twisted.iter_mut().enumerate() {
             if legs.on_canvas(phys, Part::Foot(k)) {
                 let (at, heading) = legs.foot_ground(phys, k);
                 self.lower.touch_down(&p, k, at, TOUCH_DOWN, t);
                 self.lower.replant(k, at);
-                // A foot twisted far from its heading is re-placed.
                 let off = (heading - self.lower.foot_heading(&p, k) + PI).rem_euclid(TAU) - PI;
-                if self.balance.stance.up() && off.abs() > FOOT_TWIST.to_radians() {
-                    self.lower.replace_foot(&p, k, t + dt);
-                }
+                *twist = off.abs() > FOOT_TWIST.to_radians();
             }
         }
         let at = |k: f64| self.behaviour.posture(t + dt + k * dt);
@@ -164,6 +162,16 @@ impl Sim {
             .flatten()
         {
             self.lower.recovery_step(k, to, t + dt);
+        }
+        // A foot twisted far from its heading is re-placed, unless a
+        // recovery step is due or under way, or the body is settling (it
+        // would stand in the way of both, B4, B5).
+        if let Some(k) = (0..2).find(|&k| twisted[k])
+            && self.balance.stance == Stance::Standing
+            && !self.balance.settling(t)
+            && !self.balance.recovering(t)
+        {
+            self.lower.replace_foot(&p, k, t + dt);
         }
         // The plan follows the body: re-planned from where it stands when
         // it is down, or when a blow or a step has taken it off the plan

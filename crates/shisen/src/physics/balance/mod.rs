@@ -136,6 +136,16 @@ const UPRIGHT_MAX: f32 = 250.0;
 /// fights, s (our choice: a boxer up from a knockdown stands through the
 /// rest of the count).
 const SETTLE: f64 = 1.5;
+/// A rise has stood up once the capture point is at most this far
+/// outside the feet, m (within the margin that would make a recovery
+/// step, `step_margin`'s default).
+const RISEN: f64 = 0.03;
+/// The rise's pull of the centre of mass over the feet (B5): stiffness
+/// as a share of g per metre, and its largest, a share of the weight (our
+/// calibration: a body up 0.4 m off its feet is carried over them within
+/// the rise's time).
+const OVER_FEET_K: f32 = 4.0;
+const OVER_FEET_MAX: f32 = 0.5;
 
 impl Balance {
     /// A fresh controller (a physics reset), its counts of knockdowns,
@@ -210,7 +220,9 @@ impl Balance {
                 Some(Stance::Down)
             }
             Stance::Down if since > self.down_for => Some(Stance::Rising),
-            Stance::Rising if since > p.rise_time && s.tilt < 0.5 && s.hips > 0.8 => {
+            Stance::Rising
+                if since > p.rise_time && s.tilt < 0.5 && s.hips > 0.8 && s.outside < RISEN =>
+            {
                 self.get_ups += 1;
                 Some(Stance::Standing)
             }
@@ -317,7 +329,11 @@ impl Balance {
         if self.stance != Stance::Rising {
             return 0.0;
         }
-        let u = (t - self.since) / p.rise_time;
+        let mut u = (t - self.since) / p.rise_time;
+        // Not let go of before the weight is over the feet.
+        if self.last.outside >= RISEN {
+            u = u.min(0.6);
+        }
         (1.0 - (u - 0.6).max(0.0) / 0.4).clamp(0.0, 1.0)
     }
 
@@ -499,9 +515,26 @@ impl Balance {
                 (e.to_scaled_axis() * UPRIGHT_KP - rb.angvel() * UPRIGHT_KD)
                     .clamp_length_max(UPRIGHT_MAX)
             };
+            // ... and the weight carried over the feet, as the hands and
+            // knees push the body forward onto them: a critically damped
+            // pull of the centre of mass toward the feet's midpoint.
+            let (sum, n) = (0..2)
+                .filter(|&k| legs.on_canvas(phys, Part::Foot(k)))
+                .fold((Vec3::ZERO, 0.0), |(sum, n), k| {
+                    (sum + legs.foot_ground(phys, k).0.as_vec3(), n + 1.0)
+                });
+            let over = if n == 0.0 {
+                Vec3::ZERO
+            } else {
+                let mid = sum / n;
+                let k = G as f32 * OVER_FEET_K;
+                (((mid - com) * k - v * 2.0 * k.sqrt()) * total_mass)
+                    .with_y(0.0)
+                    .clamp_length_max(OVER_FEET_MAX * weight)
+            };
             let trunk = &phys.bodies[legs.trunk];
             (
-                Vec3::Y * f * push,
+                (Vec3::Y * f + over) * push,
                 upright(pelvis, pelvis_rot) * push,
                 upright(trunk, trunk_rot) * push,
             )
