@@ -32,6 +32,12 @@ const LIFT_LOAD: f64 = 0.3;
 /// way from the lifting foot to the stance foot.
 const SHIFT_TO: f64 = 0.85;
 
+/// A swinging foot still on the canvas this long after its swing began,
+/// carrying more than `STUCK_LOAD` of the weight, has not stepped, s (our
+/// choice: a foot unloads within about 0.1 s of a weight shift).
+const LIFT_WAIT: f64 = 0.08;
+const STUCK_LOAD: f64 = 0.5;
+
 /// The referee's count after a knockdown that a boxer must wait out, even
 /// on its feet before it, s: the mandatory eight-count (AIBA Technical &
 /// Competition Rules 2019; the count is one a second).
@@ -132,10 +138,28 @@ impl Sim {
             self.behaviour.stagger(&b, None, t, t + EIGHT_COUNT);
         }
         let mut twisted = [false; 2];
+        // Each foot's share of the weight now, by where the centre of mass
+        // lies between the feet on the canvas.
+        let grounded = [0, 1].map(|k| {
+            legs.on_canvas(phys, Part::Foot(k))
+                .then(|| legs.foot_ground(phys, k).0.as_vec3())
+        });
+        let load = match grounded {
+            [Some(a), Some(b)] => share_between(a, b, state.com.as_vec3()),
+            [Some(_), None] => [1.0, 0.0],
+            [None, Some(_)] => [0.0, 1.0],
+            [None, None] => [0.0; 2],
+        };
         for (k, twist) in twisted.iter_mut().enumerate() {
             if legs.on_canvas(phys, Part::Foot(k)) {
                 let (at, heading) = legs.foot_ground(phys, k);
                 self.lower.touch_down(&p, k, at, TOUCH_DOWN, t);
+                // A swinging foot the weight still holds down after
+                // `LIFT_WAIT` has not stepped: it stands where it is, and
+                // the balance may step with the other (B4).
+                if self.balance.stance == Stance::Standing && f64::from(load[k]) > STUCK_LOAD {
+                    self.lower.call_off(k, at, t - LIFT_WAIT);
+                }
                 self.lower.replant(k, at);
                 let off = (heading - self.lower.foot_heading(&p, k) + PI).rem_euclid(TAU) - PI;
                 *twist = off.abs() > FOOT_TWIST.to_radians();
