@@ -202,6 +202,8 @@ pub struct Legs {
     /// Each part's rest-pose frame ([`frame`] of its bone), for turning
     /// a posed leg into rotations.
     rest_frames: [Mat3; 7],
+    /// The articulation's joints as built (at rest), in its links' order.
+    rest_joints: Vec<MultibodyJoint>,
 }
 
 /// An orthonormal frame from a bone's axis and a side direction: columns
@@ -355,6 +357,11 @@ impl Legs {
             joints.push(h);
         }
         let joints: [MultibodyJointHandle; 7] = joints.try_into().expect("seven joints");
+        let rest_joints = phys
+            .multibody_joints
+            .get(joints[0])
+            .map(|(mb, _)| mb.links().map(|l| l.joint).collect())
+            .unwrap_or_default();
         // The canvas: a slab whose top is the ground (y = 0), wider than
         // any ring.
         let ground = phys.insert_collider(
@@ -387,6 +394,7 @@ impl Legs {
             local_inertia,
             mass,
             rest_frames,
+            rest_joints,
         }
     }
 
@@ -552,6 +560,33 @@ impl Legs {
             rb.reset_forces(true);
             rb.reset_torques(true);
         }
+        // The articulation's own state is its joints' coordinates and
+        // velocities, from which rapier poses the links on every step: the
+        // bodies set alone came back on the next step where they had been,
+        // still spinning (resets that blew up again tick after tick).
+        let root_rest = Pose::from_parts(
+            WAIST_REST.as_vec3() - Vec3::Y * anthro::HIP_BELOW_WAIST as f32,
+            Quat::IDENTITY,
+        );
+        let Some((mb, _)) = phys.multibody_joints.get_mut(self.joints[0]) else {
+            return;
+        };
+        for (l, rest) in mb.links_mut().zip(&self.rest_joints) {
+            if l.is_root() {
+                // The free root: displaced from where it is to rest.
+                let j = &mut l.joint;
+                let want = j.data.local_frame1.inverse() * root_rest * j.data.local_frame2;
+                let c = j.coords();
+                let turn = (want.rotation * j.joint_rot().inverse()).to_scaled_axis();
+                let d = want.translation - Vec3::new(c[0], c[1], c[2]);
+                j.apply_displacement(&[d.x, d.y, d.z, turn.x, turn.y, turn.z]);
+            } else {
+                l.joint = *rest;
+            }
+        }
+        mb.generalized_velocity_mut().fill(0.0);
+        mb.forward_kinematics(&phys.bodies, false);
+        mb.update_rigid_bodies(&mut phys.bodies, true);
     }
 }
 

@@ -385,6 +385,39 @@ mod tests {
         }
     }
 
+    /// How far the physical legs' joints (hips, knees, ankles) are from
+    /// their rest places, at most, m.
+    fn legs_off_rest(sim: &Sim) -> f64 {
+        let legs = sim.world.legs.as_ref().expect("a physical body");
+        let posed = legs.posed(&sim.world.phys);
+        (0..2)
+            .flat_map(|k| {
+                let (p, r) = (&posed[k], &legs.rest[k]);
+                [p.hip - r.hip, p.knee - r.knee, p.ankle - r.ankle]
+            })
+            .map(|d| d.length())
+            .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn a_reset_puts_the_physical_body_back_at_rest() {
+        // Shoved hard at 1 s: by 2 s it has stepped or fallen off its place.
+        let mut sim = pushed(Pelvis::Balanced, DVec3::X * 75.0);
+        run(&mut sim, 2.0);
+        assert!(legs_off_rest(&sim) > 0.1, "the shove did not move it");
+        // A reset sets the articulation's joints, not only its bodies (set
+        // alone, rapier posed them back where they were on the next step).
+        sim.reset_vh("test");
+        run(&mut sim, 0.01);
+        let off = legs_off_rest(&sim);
+        assert!(
+            off < 0.03,
+            "10 ms after a reset a leg joint is {off} m from rest"
+        );
+        run(&mut sim, 1.0);
+        assert_eq!(sim.resets, 1, "the reset blew up again");
+    }
+
     /// The physical body holds together: its pelvis is in the world, its
     /// feet start on the canvas, nothing blows up, and a push on the trunk
     /// moves the whole body (a driven pelvis does not move at all).
