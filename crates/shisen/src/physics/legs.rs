@@ -545,9 +545,10 @@ impl Legs {
 
     /// Put every part back at rest, at rest.
     pub fn reset(&self, phys: &mut PhysicsWorld) {
+        let pelvis = WAIST_REST.as_vec3() - Vec3::Y * anthro::HIP_BELOW_WAIST as f32;
         for (i, h) in self.handles.iter().enumerate() {
             let centre = match Part::ALL[i] {
-                Part::Pelvis => WAIST_REST.as_vec3() - Vec3::Y * anthro::HIP_BELOW_WAIST as f32,
+                Part::Pelvis => pelvis,
                 Part::Thigh(k) => mid(self.rest[k].hip, self.rest[k].knee),
                 Part::Shank(k) => mid(self.rest[k].knee, self.rest[k].ankle),
                 Part::Foot(k) => self.rest_foot_centre(k),
@@ -564,10 +565,7 @@ impl Legs {
         // velocities, from which rapier poses the links on every step: the
         // bodies set alone came back on the next step where they had been,
         // still spinning (resets that blew up again tick after tick).
-        let root_rest = Pose::from_parts(
-            WAIST_REST.as_vec3() - Vec3::Y * anthro::HIP_BELOW_WAIST as f32,
-            Quat::IDENTITY,
-        );
+        let root_rest = Pose::from_parts(pelvis, Quat::IDENTITY);
         let Some((mb, _)) = phys.multibody_joints.get_mut(self.joints[0]) else {
             return;
         };

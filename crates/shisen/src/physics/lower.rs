@@ -447,15 +447,13 @@ impl LowerBody {
 
     /// Call off foot `k`'s swing if it began before `before`: a foot that
     /// the body's weight still holds on the canvas at `at` is planted there
-    /// again. Returns whether a swing was called off.
-    pub fn call_off(&mut self, k: usize, at: DVec3, before: f64) -> bool {
+    /// again.
+    pub fn call_off(&mut self, k: usize, at: DVec3, before: f64) {
         let f = &mut self.feet[k];
-        let stuck = f.swing.is_some_and(|s| s.t0 < before);
-        if stuck {
+        if f.swing.is_some_and(|s| s.t0 < before) {
             f.swing = None;
             f.at = at.with_y(0.0);
         }
-        stuck
     }
 
     /// Put the pelvis's ground point at `to` for this tick: a physical

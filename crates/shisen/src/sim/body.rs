@@ -7,7 +7,7 @@ use std::f64::consts::{PI, TAU};
 use glam::{DQuat, DVec3};
 
 use super::Sim;
-use crate::physics::balance::{Balance, Stance, share_between};
+use crate::physics::balance::{Balance, Stance, share_between, shares};
 use crate::physics::body::OpponentPart;
 use crate::physics::body::Seg;
 use crate::physics::legs::{Joint, Part};
@@ -137,22 +137,17 @@ impl Sim {
                 .behaviour(&self.model.params.effort, &self.model.params.behaviour);
             self.behaviour.stagger(&b, None, t, t + EIGHT_COUNT);
         }
-        let mut twisted = [false; 2];
-        // Each foot's share of the weight now, by where the centre of mass
-        // lies between the feet on the canvas.
-        let grounded = [0, 1].map(|k| {
+        // The feet on the canvas (ground points), and each one's share of
+        // the weight now, by where the centre of mass lies between them.
+        let feet = [0, 1].map(|k| {
             legs.on_canvas(phys, Part::Foot(k))
-                .then(|| legs.foot_ground(phys, k).0.as_vec3())
+                .then(|| legs.foot_ground(phys, k).0)
         });
-        let load = match grounded {
-            [Some(a), Some(b)] => share_between(a, b, state.com.as_vec3()),
-            [Some(_), None] => [1.0, 0.0],
-            [None, Some(_)] => [0.0, 1.0],
-            [None, None] => [0.0; 2],
-        };
+        let load = shares(feet.map(|f| f.map(DVec3::as_vec3)), state.com.as_vec3());
+        let mut twisted = [false; 2];
         for (k, twist) in twisted.iter_mut().enumerate() {
-            if legs.on_canvas(phys, Part::Foot(k)) {
-                let (at, heading) = legs.foot_ground(phys, k);
+            if let Some(at) = feet[k] {
+                let heading = legs.foot_ground(phys, k).1;
                 self.lower.touch_down(&p, k, at, TOUCH_DOWN, t);
                 // A swinging foot the weight still holds down after
                 // `LIFT_WAIT` has not stepped: it stands where it is, and
@@ -168,10 +163,6 @@ impl Sim {
         let at = |k: f64| self.behaviour.posture(t + dt + k * dt);
         let (before, now, after) = (at(-1.0), at(0.0), at(1.0));
         // B4: a recovery step when the capture point has left the feet.
-        let feet = [0, 1].map(|k| {
-            legs.on_canvas(phys, Part::Foot(k))
-                .then(|| legs.foot_ground(phys, k).0)
-        });
         let across = DVec3::new(ahead.z as f64, 0.0, -ahead.x as f64).normalize_or_zero();
         let side = [0, 1].map(|k| {
             let off = self.lower.foot(k) - self.lower.pelvis();

@@ -367,7 +367,10 @@ impl Balance {
         // A foot the plan swings carries no weight, whether or not it has
         // left the canvas yet: its leg lifts it.
         let on = [0, 1].map(|k| reference.planted(k) && legs.on_canvas(&world.phys, Part::Foot(k)));
-        let shares = weight_shares(&legs, &world.phys, on, com);
+        let shares = shares(
+            [0, 1].map(|k| on[k].then(|| legs.foot_ground(&world.phys, k).0.as_vec3())),
+            com,
+        );
         // The planted soles hold where they stand (B1).
         let held = on.map(|o| o && self.stance == Stance::Standing);
         self.grip.hold(world, &legs, held);
@@ -575,23 +578,15 @@ const SWING_D: f32 = 300.0;
 const SWING_MAX: f32 = 500.0;
 const MAX_HIP: f32 = 300.0;
 
-/// The feet's shares of the weight: by where the centre of mass lies
-/// between the feet on the canvas (one foot on it carries it all).
-fn weight_shares(
-    legs: &Legs,
-    phys: &rapier3d::prelude::PhysicsWorld,
-    on: [bool; 2],
-    com: Vec3,
-) -> [f32; 2] {
-    match on {
-        [true, true] => share_between(
-            legs.foot_ground(phys, 0).0.as_vec3(),
-            legs.foot_ground(phys, 1).0.as_vec3(),
-            com,
-        ),
-        [true, false] => [1.0, 0.0],
-        [false, true] => [0.0, 1.0],
-        [false, false] => [0.0, 0.0],
+/// The feet's shares of the weight, given the ground points of the feet
+/// that carry it (`None`: off the canvas, or not standing): by where
+/// `weight` lies between two feet; one foot carries it all.
+pub fn shares(feet: [Option<Vec3>; 2], weight: Vec3) -> [f32; 2] {
+    match feet {
+        [Some(a), Some(b)] => share_between(a, b, weight),
+        [Some(_), None] => [1.0, 0.0],
+        [None, Some(_)] => [0.0, 1.0],
+        [None, None] => [0.0, 0.0],
     }
 }
 
