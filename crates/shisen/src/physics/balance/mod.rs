@@ -10,7 +10,7 @@
 //!   place between the feet: tau_j = (p_j - c) x (s_k M g y^)          (B3)
 //!   (the ankle strategy, and the hips' when the trunk is pushed)
 //! large ones: xi outside the feet's polygon by `step_margin`: the foot
-//!   that reaches it soonest steps to where xi will be at touchdown,
+//!   the capture point loads less steps to where xi will be at touchdown,
 //!   xi_T = p + (xi - p) e^(w0 T), p the other foot, T the step's time
 //!   (the linear inverted pendulum's capture step), no farther than
 //!   `max_step`; meanwhile the stance leg no longer pulls the centre of
@@ -272,8 +272,9 @@ impl Balance {
 
     /// A recovery step, if one is due (B4): the capture point outside the
     /// feet by more than `step_margin`, standing, no step under way. Of
-    /// the two feet on the canvas at `feet` (ground points), the one whose
-    /// step is shortest goes to where the capture point will be when it
+    /// the two feet on the canvas at `feet` (ground points), the one the
+    /// capture point loads less (of two loaded about evenly, the one whose
+    /// step is shortest) goes to where the capture point will be when it
     /// lands after `step_time`, the other foot bearing the weight
     /// meanwhile, shifted to its own side of the body by `side[k]` (so
     /// the legs do not cross), no farther than `max_step` from where it
@@ -298,12 +299,25 @@ impl Balance {
             let xi = pivot + (s.capture - pivot) * grow + side[k];
             Some(at + (xi - at).clamp_length_max(p.max_step))
         };
+        // The foot the capture point loads less steps: a loaded foot
+        // cannot leave the canvas (its swing would be called off, and the
+        // other foot would be pushed from under the weight). Of two feet
+        // loaded about evenly, the shorter step.
+        let load = match feet {
+            [Some(a), Some(b)] => share_between(a.as_vec3(), b.as_vec3(), s.capture.as_vec3()),
+            _ => [0.5; 2],
+        };
         let (k, to) = [0, 1]
             .into_iter()
             .filter_map(|k| target(k).map(|to| (k, to)))
             .min_by(|a, b| {
                 let d = |(k, to): &(usize, DVec3)| (*to - feet[*k].unwrap_or(*to)).length();
-                d(a).total_cmp(&d(b))
+                let (la, lb) = (load[a.0], load[b.0]);
+                if (la - lb).abs() > EVEN_LOAD {
+                    la.total_cmp(&lb)
+                } else {
+                    d(a).total_cmp(&d(b))
+                }
             })?;
         self.recovering_until = t + step_time;
         self.recovery_steps += 1;
@@ -577,6 +591,11 @@ const SWING_K: f32 = 3000.0;
 const SWING_D: f32 = 300.0;
 const SWING_MAX: f32 = 500.0;
 const MAX_HIP: f32 = 300.0;
+
+/// Two feet whose shares of the capture point's weight differ by less
+/// than this are loaded evenly; the shorter recovery step is taken (our
+/// choice).
+const EVEN_LOAD: f32 = 0.1;
 
 /// The feet's shares of the weight, given the ground points of the feet
 /// that carry it (`None`: off the canvas, or not standing): by where
