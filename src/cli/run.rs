@@ -368,7 +368,7 @@ pub fn run(a: RunArgs) -> Result<ExitCode> {
     }
     let secs = wall.elapsed().as_secs_f64();
     say(format!(
-        "scene {} ({}), seed {}: {:.3} s simulated in {} ticks, {:.2} s wall ({:.1}x real time)",
+        "scene {} ({}), seed {}: {:.3} s simulated in {} ticks, {:.3} s wall ({:.1}x real time)",
         loaded.scene.name,
         loaded.source,
         loaded.scene.seed,
