@@ -13,8 +13,9 @@ pairs' ratios.
 
 A build is named by the path of a `shisen` binary or by a git revision. A
 revision is built once into `target/ab/<commit>` from a worktree of this
-repository (its own target directory, so the working tree's build is not
-touched), and reused by later runs.
+repository (with a target directory of its own, `target/ab/target`, shared
+by the revisions, so the working tree's build is not touched and a second
+revision rebuilds only what changed), and reused by later runs.
 
 Usage:
     python3 benches/ab.py --before HEAD~1                  # against the working tree's release build
@@ -66,10 +67,13 @@ def resolve(build):
         subprocess.run(["git", "worktree", "add", "--detach", tree, commit],
                        cwd=ROOT, check=True, capture_output=True)
     print(f"building {build} ({commit[:12]}) into {home} ...", file=sys.stderr)
-    env = dict(os.environ, CARGO_TARGET_DIR=os.path.join(home, "target"))
+    # One target directory for every revision: a second revision rebuilds
+    # only what changed, not every dependency.
+    shared = os.path.join(ROOT, "target", "ab", "target")
+    env = dict(os.environ, CARGO_TARGET_DIR=shared)
     subprocess.run(["cargo", "build", "--release", "--quiet", "--bin", "shisen"],
                    cwd=tree, env=env, check=True)
-    os.replace(os.path.join(home, "target", "release", "shisen"), binary)
+    os.replace(os.path.join(shared, "release", "shisen"), binary)
     subprocess.run(["git", "worktree", "remove", "--force", tree], cwd=ROOT, check=False,
                    capture_output=True)
     return binary
