@@ -302,11 +302,9 @@ impl Balance {
         // The foot the capture point loads less steps: a loaded foot
         // cannot leave the canvas (its swing would be called off, and the
         // other foot would be pushed from under the weight). Of two feet
-        // loaded about evenly, the shorter step.
-        let load = match feet {
-            [Some(a), Some(b)] => share_between(a.as_vec3(), b.as_vec3(), s.capture.as_vec3()),
-            _ => [0.5; 2],
-        };
+        // loaded about evenly, the shorter step. (With one foot on the
+        // canvas it is the only one that can step.)
+        let load = shares(feet.map(|f| f.map(DVec3::as_vec3)), s.capture.as_vec3());
         let (k, to) = [0, 1]
             .into_iter()
             .filter_map(|k| target(k).map(|to| (k, to)))
