@@ -472,13 +472,27 @@ pub fn soak_cmd(
         "  ring craft{}: the VH threw {:.1} punches a minute, landed {:.1}, took {:.1}; time at clinch/mid/long/out {:.0}/{:.0}/{:.0}/{:.0} %",
         vh.1.map(|o| format!(" ({o})")).unwrap_or_default(),
         f64::from(r.card.vh.total().thrown) * per_min,
-        f64::from(r.tally.vh_hits) * per_min,
-        f64::from(r.tally.opponent_hits) * per_min,
+        f64::from(r.card.vh.total().landed) * per_min,
+        f64::from(r.card.you.total().landed) * per_min,
         100.0 * shares[0],
         100.0 * shares[1],
         100.0 * shares[2],
         100.0 * shares[3],
     );
+    // CompuBox's categories: a punch lands when a blow of it strikes the
+    // head or trunk (a glove's other contacts are in the blows line).
+    for (who, f) in [("the VH", &r.card.vh), ("the opponent", &r.card.you)] {
+        println!(
+            "  punches, {who}: {} landed (jabs {}, power {}; head {}, body {}), {} blocked, {} missed",
+            f.total().show(),
+            f.jabs.show(),
+            f.power.show(),
+            f.head,
+            f.body,
+            f.blocked,
+            f.missed,
+        );
+    }
     let t = &r.tally;
     println!(
         "  blows: the opponent landed {} hits ({} blocked, {} punches stopped dead by the VH's guard), the VH {} ({} blocked)",

@@ -230,10 +230,26 @@ pub enum OpponentPart {
     LeftGlove,
     /// The opponent's right glove.
     RightGlove,
+    /// The opponent's trunk, carried under its head (not scripted on its
+    /// own: it follows the head's path, [`TRUNK_BELOW_HEAD`]).
+    Trunk,
 }
 
+/// The opponent's trunk: a capsule from the waist to the shoulders, its
+/// centre this far below the head's (m): the torso of a 1.75 m man, chest
+/// and abdomen about 0.5 m tall (suprasternale 1.44 m, waist 1.05 m;
+/// Gordon et al. 1989, ANSUR, median men), the head's centre about 0.2 m
+/// above the suprasternale.
+pub const TRUNK_BELOW_HEAD: f32 = 0.45;
+/// The trunk capsule's radius and half its straight length, m (chest
+/// depth about 0.25 m and breadth 0.33 m, Gordon et al. 1989: a 0.15 m
+/// radius; 0.5 m tall in all).
+pub const TRUNK_RADIUS: f32 = 0.15;
+pub const TRUNK_HALF_HEIGHT: f32 = 0.1;
+
 impl OpponentPart {
-    /// Every part, in world order.
+    /// The parts a timeline moves (head and gloves), in world order; the
+    /// trunk follows the head.
     pub const ALL: [OpponentPart; 3] = [
         OpponentPart::Head,
         OpponentPart::LeftGlove,
@@ -253,6 +269,7 @@ impl OpponentPart {
             OpponentPart::Head => "head",
             OpponentPart::LeftGlove => "left_glove",
             OpponentPart::RightGlove => "right_glove",
+            OpponentPart::Trunk => "torso",
         }
     }
 }

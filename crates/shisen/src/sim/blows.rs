@@ -173,6 +173,7 @@ impl Blows {
         }
         let opp_parts = [
             (OpponentPart::Head, BlowKind::Hit),
+            (OpponentPart::Trunk, BlowKind::Hit),
             (OpponentPart::LeftGlove, BlowKind::Block),
             (OpponentPart::RightGlove, BlowKind::Block),
         ];
@@ -185,7 +186,7 @@ impl Blows {
                     by: Fighter::Vh,
                     kind,
                     name: k.name(),
-                    guard_part: k != OpponentPart::Head,
+                    guard_part: kind == BlowKind::Block,
                     episode: None,
                 });
             }

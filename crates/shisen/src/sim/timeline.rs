@@ -5,12 +5,12 @@
 use std::collections::VecDeque;
 use std::path::PathBuf;
 
-use glam::{DVec2, DVec3};
+use glam::{DVec2, DVec3, Vec3};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::track::Track;
-use crate::physics::body::{OpponentPart, Seg};
+use crate::physics::body::{OpponentPart, Seg, TRUNK_BELOW_HEAD};
 use crate::physics::world::{PushPart, World};
 use shisen_face::{Face, FaceState};
 use shisen_gaze::oculomotor::{AxisCommand, GazeShiftLaw};
@@ -515,15 +515,26 @@ impl Timeline {
     /// Drive the scripted bodies to where their tracks are at `t + dt`,
     /// with the track's velocity and acceleration (finite differences of
     /// its last three positions).
+    /// The opponent's trunk goes where its head goes,
+    /// [`TRUNK_BELOW_HEAD`] lower.
     pub fn drive(&mut self, world: &mut World, t: f64, dt: f64) {
+        let head = world.part(OpponentPart::Head);
+        let mut carried = None;
         for (b, tr, hist) in &mut self.tracks {
             let p = tr.position(t + dt);
             let [p1, p2] = *hist;
             let v = (p - p1) / dt;
             let a = (p - 2.0 * p1 + p2) / (dt * dt);
             *hist = [p, p1];
-            world.drive(*b, p.as_vec3(), v.as_vec3(), a.as_vec3());
+            let (p, v, a) = (p.as_vec3(), v.as_vec3(), a.as_vec3());
+            world.drive(*b, p, v, a);
+            if *b == head {
+                carried = Some((p, v, a));
+            }
         }
+        let (p, v, a) = carried.unwrap_or((world.position(head), Vec3::ZERO, Vec3::ZERO));
+        let trunk = world.part(OpponentPart::Trunk);
+        world.drive(trunk, p - Vec3::Y * TRUNK_BELOW_HEAD, v, a);
     }
 
     /// Run every event due by `t`, in time order.

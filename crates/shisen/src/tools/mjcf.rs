@@ -14,7 +14,9 @@ use std::fmt::Write as _;
 
 use glam::{Quat, Vec3};
 
-use crate::physics::body::{BodyPlan, JointKind, Shape};
+use crate::physics::body::{
+    BodyPlan, JointKind, Shape, TRUNK_BELOW_HEAD, TRUNK_HALF_HEIGHT, TRUNK_RADIUS,
+};
 use crate::physics::legs::{
     FOOT_HALF_HEIGHT, FOOT_HALF_WIDTH, PELVIS_HALF, SHANK_RADIUS, SOLE_FRICTION, THIGH_RADIUS,
     leg_frames, share,
@@ -256,6 +258,16 @@ pub fn mjcf(plan: &BodyPlan, dt: f64, legs: Option<&BodyParams>) -> String {
             zup(p)
         );
     }
+    let trunk = Shape::Capsule {
+        half_height: TRUNK_HALF_HEIGHT,
+        radius: TRUNK_RADIUS,
+    };
+    let _ = writeln!(
+        x,
+        "    <body name=\"torso\" mocap=\"true\" pos=\"{}\">{}</body>",
+        zup(plan.opponent_head - Vec3::Y * TRUNK_BELOW_HEAD),
+        geom(trunk, Vec3::Y, 0.0, 2, 1)
+    );
     let _ = writeln!(x, "  </worldbody>");
     let _ = writeln!(x, "</mujoco>");
     x
@@ -324,7 +336,15 @@ mod tests {
             .sum();
         // The opponent's mocap parts carry no mass in MJCF; rapier's are
         // dynamic bodies of their own.
-        let opponent: f32 = world.parts().iter().map(|&b| world.rb(b).mass()).sum();
+        let trunk = world
+            .rb(world.part(crate::physics::body::OpponentPart::Trunk))
+            .mass();
+        let opponent: f32 = trunk
+            + world
+                .parts()
+                .iter()
+                .map(|&b| world.rb(b).mass())
+                .sum::<f32>();
         assert!(
             (masses - (rapier - opponent)).abs() < 0.05,
             "MJCF {masses} kg, rapier {} kg",

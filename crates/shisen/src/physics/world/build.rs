@@ -7,8 +7,9 @@ use rapier3d::prelude::*;
 use super::{BodyInfo, Group32, Owner, SOLVER_ITERATIONS, SOLVER_SUBSTEPS, VH_GROUP};
 use crate::physics::body::{
     BodyPlan, Group, HARD_STOP_MARGIN_DEG, JointKind, OpponentPart, Seg, Segment, Shape,
+    TRUNK_BELOW_HEAD, TRUNK_HALF_HEIGHT, TRUNK_RADIUS,
 };
-use crate::physics::opponent::OPPONENT_MASS;
+use crate::physics::opponent::{OPPONENT_MASS, OPPONENT_TRUNK_MASS};
 use shisen_gaze::vision::BodyId;
 
 pub(super) fn collider_for(shape: Shape, axis_to: Vec3, at: Vec3) -> ColliderBuilder {
@@ -187,7 +188,7 @@ pub(super) fn add_opponent(
     phys: &mut PhysicsWorld,
     plan: &BodyPlan,
     bodies: &mut Vec<BodyInfo>,
-) -> [BodyId; 3] {
+) -> ([BodyId; 3], BodyId) {
     let positions = [
         plan.opponent_head,
         plan.opponent_gloves[0],
@@ -198,7 +199,7 @@ pub(super) fn add_opponent(
         plan.glove_radius,
         plan.glove_radius,
     ];
-    OpponentPart::ALL.map(|part| {
+    let parts = OpponentPart::ALL.map(|part| {
         let k = part.index();
         let idx = bodies.len();
         // Dynamic, driven by a spring-damper toward the scripted or live
@@ -232,5 +233,38 @@ pub(super) fn add_opponent(
             offset: Vec3::ZERO,
         });
         BodyId::new(idx)
-    })
+    });
+    (parts, add_trunk(phys, plan, bodies))
+}
+
+/// The opponent's trunk, under its head: driven as the other parts are
+/// (its target the head's, [`TRUNK_BELOW_HEAD`] lower), upright, touching
+/// only the VH (the gloves' own guard positions pass in front of it).
+fn add_trunk(phys: &mut PhysicsWorld, plan: &BodyPlan, bodies: &mut Vec<BodyInfo>) -> BodyId {
+    let idx = bodies.len();
+    let h = phys.insert_body(
+        RigidBodyBuilder::dynamic()
+            .translation(plan.opponent_head - Vec3::Y * TRUNK_BELOW_HEAD)
+            .gravity_scale(0.0)
+            .lock_rotations()
+            .can_sleep(false)
+            .user_data(idx as u128),
+    );
+    let only_vh = InteractionGroups::new(Group32::GROUP_2, VH_GROUP, Default::default());
+    let c = phys.insert_collider(
+        ColliderBuilder::capsule_y(TRUNK_HALF_HEIGHT, TRUNK_RADIUS)
+            .mass(OPPONENT_TRUNK_MASS)
+            .collision_groups(only_vh)
+            .user_data(idx as u128),
+        Some(h),
+    );
+    bodies.push(BodyInfo {
+        name: OpponentPart::Trunk.name().to_string(),
+        handle: h,
+        collider: c,
+        owner: Owner::Opponent(OpponentPart::Trunk),
+        kinematic: false,
+        offset: Vec3::ZERO,
+    });
+    BodyId::new(idx)
 }

@@ -123,6 +123,8 @@ pub struct World {
     pub bodies: Vec<BodyInfo>,
     /// The body of each opponent part ([`OpponentPart`] order).
     opponent: [BodyId; 3],
+    /// The opponent's trunk ([`OpponentPart::Trunk`]).
+    opponent_trunk: BodyId,
     /// Pivot of each segment in its parent's local frame.
     anchor_parent: Vec<Vec3>,
     /// Segments of each segment's subtree (itself included), with a body
@@ -202,13 +204,14 @@ impl World {
             })
             .collect();
         let subtree = subtrees(&plan);
-        let opponent = add_opponent(&mut phys, &plan, &mut bodies);
+        let (opponent, opponent_trunk) = add_opponent(&mut phys, &plan, &mut bodies);
         World {
             phys,
             plan,
             dt,
             bodies,
             opponent,
+            opponent_trunk,
             anchor_parent,
             subtree,
             local_inertia,
@@ -282,7 +285,10 @@ impl World {
 
     /// The body of an opponent part.
     pub fn part(&self, p: OpponentPart) -> BodyId {
-        self.opponent[p.index()]
+        match p {
+            OpponentPart::Trunk => self.opponent_trunk,
+            _ => self.opponent[p.index()],
+        }
     }
 
     /// The opponent's bodies: head, left glove, right glove.
