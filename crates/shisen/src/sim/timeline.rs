@@ -216,7 +216,7 @@ pub enum Action {
     },
     /// Override the VH's gaze: follow a body (by name) until a time.
     Track {
-        /// Body name (`head`, `left_glove`, `right_glove`, a prop of
+        /// Body name (`head`, `left_glove`, `right_glove`, `torso`, a prop of
         /// `bodies`).
         body: String,
         /// End of the override, s from the run's start (not before `at`;
