@@ -14,6 +14,7 @@ use glam::{DVec3, Mat3, Quat, Vec3};
 use rapier3d::prelude::*;
 
 use crate::physics::lower::{BodyParams, Leg, LowerBody, WAIST_REST, anthro};
+use crate::physics::motor;
 
 /// Segment masses as shares of body mass: de Leva (1996, J. Biomech.
 /// 29:1223, table 4, males): pelvis (lower trunk) 11.17 %, thigh 14.16 %,
@@ -345,11 +346,12 @@ impl Legs {
                     .build()
                     .into(),
             };
-            for &axis in motor_axes(j) {
-                joint.set_motor_model(axis, MotorModel::ForceBased);
-                joint.set_motor_velocity(axis, 0.0, 0.0);
-            }
             frame2[j.index()] = joint.local_frame2.rotation;
+            let turn = match j {
+                Joint::Knee(_) => motor::Turn::Hinge(frame2[j.index()]),
+                _ => motor::Turn::Ball,
+            };
+            motor::prepare(&mut joint, turn);
             let h = phys
                 .multibody_joints
                 .insert(handles[parent.index()], child_h, joint, true)
@@ -415,42 +417,21 @@ impl Legs {
         kd: f32,
         max: f32,
     ) {
-        let Some((mb, link)) = phys.multibody_joints.get_mut(self.joints[j.index()]) else {
-            return;
+        let d = motor::Drive {
+            target,
+            velocity: Vec3::ZERO,
+            kp,
+            kd,
+            max,
         };
-        let Some(link) = mb.link_mut(link) else {
-            return;
-        };
-        let rate = if kd > 0.0 { kp / kd } else { 0.0 };
-        let joint = &mut link.joint;
+        motor::drive(phys, self.joints[j.index()], self.turn(j), &d);
+    }
+
+    /// How joint `j` turns: a knee is a hinge, the others ball joints.
+    fn turn(&self, j: Joint) -> motor::Turn {
         match j {
-            Joint::Knee(_) => {
-                let f2 = self.frame2[j.index()];
-                let axis = f2 * Vec3::X;
-                let v = Vec3::new(target.x, target.y, target.z);
-                let twist = Quat::from_xyzw(0.0, 0.0, 0.0, target.w)
-                    + Quat::from_vec4((axis * v.dot(axis)).extend(0.0));
-                let (ax, angle) = twist.normalize().to_axis_angle();
-                let angle = if ax.dot(axis) < 0.0 { -angle } else { angle };
-                let angle = (angle + std::f32::consts::PI).rem_euclid(std::f32::consts::TAU)
-                    - std::f32::consts::PI;
-                let now = joint.coords()[3];
-                joint
-                    .data
-                    .set_motor_velocity(JointAxis::AngX, rate * (angle - now), kd);
-                joint.data.set_motor_max_force(JointAxis::AngX, max);
-            }
-            _ => {
-                let mut err = target * joint.joint_rot().inverse();
-                if err.w < 0.0 {
-                    err = -err;
-                }
-                let e = err.to_scaled_axis() * rate;
-                for (&axis, v) in motor_axes(j).iter().zip([e.x, e.y, e.z]) {
-                    joint.data.set_motor_velocity(axis, v, kd);
-                    joint.data.set_motor_max_force(axis, max);
-                }
-            }
+            Joint::Knee(_) => motor::Turn::Hinge(self.frame2[j.index()]),
+            _ => motor::Turn::Ball,
         }
     }
 
@@ -585,14 +566,6 @@ impl Legs {
         mb.generalized_velocity_mut().fill(0.0);
         mb.forward_kinematics(&phys.bodies, false);
         mb.update_rigid_bodies(&mut phys.bodies, true);
-    }
-}
-
-/// The motorised axes of a joint: a knee's hinge, the others' three.
-fn motor_axes(j: Joint) -> &'static [JointAxis] {
-    match j {
-        Joint::Knee(_) => &[JointAxis::AngX],
-        _ => &[JointAxis::AngX, JointAxis::AngY, JointAxis::AngZ],
     }
 }
 

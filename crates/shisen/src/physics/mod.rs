@@ -11,6 +11,7 @@ pub mod body;
 pub mod control;
 pub mod legs;
 pub mod lower;
+pub mod motor;
 pub mod neck;
 pub mod opponent;
 pub mod plausible;

@@ -148,7 +148,7 @@ fn geom(shape: Shape, axis: Vec3, mass: f32, contype: u32, conaff: u32) -> Strin
 
 /// The MJCF text for `plan` at step `dt`: the VH as a tree of bodies with
 /// ball and hinge joints (the welded glove as a geom of its forearm), the
-/// opponent's head and gloves as mocap bodies, VH parts not colliding with
+/// opponent's head, gloves and trunk as mocap bodies, VH parts not colliding with
 /// each other (contype/conaffinity bits as in our collision groups). With
 /// `legs` (a physical body), the pelvis is a free root on a canvas plane,
 /// the trunk on it by a ball joint at the waist, the legs under it.
@@ -296,7 +296,11 @@ mod tests {
             "neck, eyes, shoulders"
         );
         assert_eq!(x.matches("type=\"hinge\"").count(), 2, "elbows");
-        assert_eq!(x.matches("mocap=\"true\"").count(), 3);
+        assert_eq!(
+            x.matches("mocap=\"true\"").count(),
+            4,
+            "head, gloves, trunk"
+        );
         assert_eq!(x.matches("<body").count(), x.matches("</body>").count());
         assert!(!x.contains("freejoint"), "the driven body is rooted");
     }

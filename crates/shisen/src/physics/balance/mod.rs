@@ -16,8 +16,10 @@
 //!   `max_step`; meanwhile the stance leg no longer pulls the centre of
 //!   mass back                                                          (B4)
 //! too large: the trunk past `fall_tilt`, or the hips lower than
-//!   `fall_height`: the body falls (muscle tone `down_tone`), lies for a
-//!   time that grows with the damage, and rises (B5)
+//!   `fall_height`, or a blow that turns the head faster than
+//!   `stun_head_speed` (the legs go): the body falls (muscle tone
+//!   `down_tone`), lies for a time that grows with the damage, and
+//!   rises (B5)
 //! ```
 //!
 //! The state machine: Standing -> Falling (a knockdown) -> Down (on the
@@ -84,6 +86,8 @@ pub struct BalanceState {
     pub tilt: f64,
     /// The hips' height (the pelvis's centre), m.
     pub hips: f64,
+    /// The head's angular speed, rad/s.
+    pub head_speed: f64,
 }
 
 /// The balance controller's evolving state.
@@ -202,6 +206,7 @@ impl Balance {
             outside,
             tilt,
             hips,
+            head_speed: f64::from(world.rb(Seg::Head).angvel().length()),
         }
     }
 
@@ -211,7 +216,11 @@ impl Balance {
         self.last = *s;
         let since = t - self.since;
         let next = match self.stance {
-            Stance::Standing if s.tilt > p.fall_tilt_deg.to_radians() || s.hips < p.fall_height => {
+            Stance::Standing
+                if s.tilt > p.fall_tilt_deg.to_radians()
+                    || s.hips < p.fall_height
+                    || s.head_speed > p.stun_head_speed =>
+            {
                 self.knockdowns += 1;
                 Some(Stance::Falling)
             }

@@ -9,6 +9,7 @@ use crate::physics::body::{
     BodyPlan, Group, HARD_STOP_MARGIN_DEG, JointKind, OpponentPart, Seg, Segment, Shape,
     TRUNK_BELOW_HEAD, TRUNK_HALF_HEIGHT, TRUNK_RADIUS,
 };
+use crate::physics::motor::{self, Turn};
 use crate::physics::opponent::{OPPONENT_MASS, OPPONENT_TRUNK_MASS};
 use shisen_gaze::vision::BodyId;
 
@@ -109,26 +110,53 @@ pub(super) fn add_segments(
     }
 }
 
+/// A segment's joint as a link of the physical body's articulation, and
+/// how it turns.
+pub(super) type Link = (MultibodyJointHandle, Turn);
+
 /// Build step 3: the joints between segments (ball, hinge; eyes and neck
-/// with a hard stop beyond the controller's range). Returns each
-/// segment's pivot in its parent's frame.
+/// with a hard stop beyond the controller's range). With a free root
+/// (`linked`) the shoulders and elbows are links of the body's
+/// articulation, as the legs' joints are, driven by its motors
+/// (docs/model/balance.md, B1): an arm on a joint of its own to an
+/// articulated trunk is solved apart from it, and under a fallen body's
+/// weight it could spin up past 200 rad/s in a step. The neck and eyes
+/// stay joints of their own (linked, the eyes were solved too loosely for
+/// a saccade). Returns each segment's pivot in its parent's frame, and
+/// each linked segment's link.
 pub(super) fn join_segments(
     phys: &mut PhysicsWorld,
     plan: &BodyPlan,
     bodies: &[BodyInfo],
-) -> Vec<Vec3> {
+    linked: bool,
+) -> (Vec<Vec3>, Vec<Option<Link>>) {
     let mut anchor_parent = vec![Vec3::ZERO; plan.segments.len()];
+    let mut links = vec![None; plan.segments.len()];
     for (i, s) in plan.segments.iter().enumerate() {
         let Some(p) = s.parent else { continue };
         let a1 = s.pivot - plan.segments[p.index()].centre;
         let a2 = s.pivot - s.centre;
         anchor_parent[i] = a1;
-        let Some(joint) = joint_for(s, a1, a2) else {
+        let Some(mut joint) = joint_for(s, a1, a2) else {
             continue;
         };
-        phys.insert_impulse_joint(bodies[p.index()].handle, bodies[i].handle, joint);
+        let (h1, h2) = (bodies[p.index()].handle, bodies[i].handle);
+        if linked && matches!(s.group, Some(Group::Shoulder | Group::Elbow)) {
+            let turn = match s.joint {
+                JointKind::Hinge { .. } => Turn::Hinge(joint.local_frame2.rotation),
+                _ => Turn::Ball,
+            };
+            motor::prepare(&mut joint, turn);
+            let h = phys
+                .multibody_joints
+                .insert(h1, h2, joint, true)
+                .expect("the arms hang from the trunk as a tree");
+            links[i] = Some((h, turn));
+        } else {
+            phys.insert_impulse_joint(h1, h2, joint);
+        }
     }
-    anchor_parent
+    (anchor_parent, links)
 }
 
 /// The rapier joint of a segment with anchors `a1` (parent frame) and

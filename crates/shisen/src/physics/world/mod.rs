@@ -13,7 +13,9 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use crate::physics::body::{BodyPlan, Group, JointKind, OpponentPart, Seg, Shape};
-use crate::physics::control::{Gains, JointState, JointTarget, end_range_torque, pd_torque};
+use crate::physics::control::{
+    Gains, JointState, JointTarget, end_range_torque, feedforward, pd_torque,
+};
 mod build;
 mod soles;
 pub use soles::SoleSlip;
@@ -22,6 +24,7 @@ pub use build::HEAD_RESTITUTION;
 
 use crate::physics::legs::{Legs, Part, share};
 use crate::physics::lower::{BodyParams, Pelvis};
+use crate::physics::motor;
 use crate::physics::neck::{NeckParams, NeckState, neck_torque};
 use crate::physics::opponent::{DriveState, drive_impulse};
 use build::{add_opponent, add_segments, collider_for, empty_world, join_segments, subtrees};
@@ -106,6 +109,10 @@ pub const SOLVER_ITERATIONS: usize = 2;
 /// on the canvas need them; see [`World::with_body`]).
 pub const BALANCED_ITERATIONS: usize = 8;
 
+/// The largest torque of a linked joint's motors, N m: no cap of its own
+/// (the arms' PD torques are not capped either); a bound on a runaway.
+const LINK_MAX_TORQUE: f32 = 1.0e4;
+
 /// Collision group of the VH (it does not collide with itself).
 const VH_GROUP: Group32 = Group32::GROUP_1;
 type Group32 = rapier3d::geometry::Group;
@@ -125,6 +132,10 @@ pub struct World {
     opponent: [BodyId; 3],
     /// The opponent's trunk ([`OpponentPart::Trunk`]).
     opponent_trunk: BodyId,
+    /// Each segment's joint as a link of the physical body's articulation
+    /// (a free root's shoulders and elbows), driven by its motors;
+    /// `None`: a joint of its own, driven by torques.
+    links: Vec<Option<build::Link>>,
     /// Pivot of each segment in its parent's local frame.
     anchor_parent: Vec<Vec3>,
     /// Segments of each segment's subtree (itself included), with a body
@@ -180,7 +191,7 @@ impl World {
             phys.integration_parameters.num_internal_pgs_iterations = BALANCED_ITERATIONS;
         }
         add_segments(&mut phys, &plan, &mut bodies, free);
-        let anchor_parent = join_segments(&mut phys, &plan, &bodies);
+        let (anchor_parent, links) = join_segments(&mut phys, &plan, &bodies, free);
         let legs = body.filter(|_| free).map(|b| {
             let torso = &plan.segments[Seg::Torso.index()];
             let groups =
@@ -212,6 +223,7 @@ impl World {
             bodies,
             opponent,
             opponent_trunk,
+            links,
             anchor_parent,
             subtree,
             local_inertia,
@@ -448,9 +460,23 @@ impl World {
             let state = self.joint_state(s);
             let target = &targets[s.index()];
             let g = gains.group(group);
-            let mut tau = match group {
-                Group::Neck => neck_torque(g, neck.0, neck.1, target, &state, dt),
-                _ => pd_torque(g, target, &state, dt),
+            let link = self.links[s.index()];
+            let mut tau = match (group, link) {
+                // A link's spring and damper are its motors'; the
+                // feed-forward is a torque.
+                (_, Some((joint, turn))) => {
+                    let d = motor::Drive {
+                        target: target.rotation,
+                        velocity: target.velocity,
+                        kp: g.kp as f32,
+                        kd: g.kd as f32,
+                        max: LINK_MAX_TORQUE,
+                    };
+                    motor::drive(&mut self.phys, joint, turn, &d);
+                    feedforward(g, target, &state)
+                }
+                (Group::Neck, None) => neck_torque(g, neck.0, neck.1, target, &state, dt),
+                (_, None) => pd_torque(g, target, &state, dt),
             };
             // The eyes' and the neck's soft limits (their targets stay
             // inside; blows can carry them past).
@@ -566,8 +592,12 @@ impl World {
             Some(soles) => self.phys.step_with_events(soles, &()),
             None => self.phys.step(),
         }
+        // A link's torques were held through the step (World::torque_impulse):
+        // cleared, every link's.
         if let Some(legs) = &self.legs {
-            for h in legs.handles.iter().chain([&legs.trunk]) {
+            let upper = self.links.iter().zip(&self.bodies);
+            let upper = upper.filter(|(l, _)| l.is_some()).map(|(_, b)| &b.handle);
+            for h in legs.handles.iter().chain([&legs.trunk]).chain(upper) {
                 self.phys.bodies[*h].reset_forces(false);
                 self.phys.bodies[*h].reset_torques(false);
             }
