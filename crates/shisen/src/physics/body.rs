@@ -231,7 +231,7 @@ pub enum OpponentPart {
     /// The opponent's right glove.
     RightGlove,
     /// The opponent's trunk, carried under its head (not scripted on its
-    /// own: it follows the head's path, [`TRUNK_BELOW_HEAD`]).
+    /// own: it follows the head's path, [`trunk_under`]).
     Trunk,
 }
 
@@ -247,6 +247,11 @@ pub const TRUNK_BELOW_HEAD: f32 = 0.45;
 pub const TRUNK_RADIUS: f32 = 0.15;
 pub const TRUNK_HALF_HEIGHT: f32 = 0.1;
 
+/// Where the opponent's trunk sits under its head at `head`, world.
+pub fn trunk_under(head: Vec3) -> Vec3 {
+    head - Vec3::Y * TRUNK_BELOW_HEAD
+}
+
 impl OpponentPart {
     /// The parts a timeline moves (head and gloves), in world order; the
     /// trunk follows the head.
@@ -254,6 +259,13 @@ impl OpponentPart {
         OpponentPart::Head,
         OpponentPart::LeftGlove,
         OpponentPart::RightGlove,
+    ];
+    /// Every part, the trunk last.
+    pub const EVERY: [OpponentPart; 4] = [
+        OpponentPart::Head,
+        OpponentPart::LeftGlove,
+        OpponentPart::RightGlove,
+        OpponentPart::Trunk,
     ];
     /// The gloves, left then right.
     pub const GLOVES: [OpponentPart; 2] = [OpponentPart::LeftGlove, OpponentPart::RightGlove];

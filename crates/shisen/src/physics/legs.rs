@@ -347,11 +347,7 @@ impl Legs {
                     .into(),
             };
             frame2[j.index()] = joint.local_frame2.rotation;
-            let turn = match j {
-                Joint::Knee(_) => motor::Turn::Hinge(frame2[j.index()]),
-                _ => motor::Turn::Ball,
-            };
-            motor::prepare(&mut joint, turn);
+            motor::prepare(&mut joint, turn(j, &frame2));
             let h = phys
                 .multibody_joints
                 .insert(handles[parent.index()], child_h, joint, true)
@@ -424,15 +420,7 @@ impl Legs {
             kd,
             max,
         };
-        motor::drive(phys, self.joints[j.index()], self.turn(j), &d);
-    }
-
-    /// How joint `j` turns: a knee is a hinge, the others ball joints.
-    fn turn(&self, j: Joint) -> motor::Turn {
-        match j {
-            Joint::Knee(_) => motor::Turn::Hinge(self.frame2[j.index()]),
-            _ => motor::Turn::Ball,
-        }
+        motor::drive(phys, self.joints[j.index()], turn(j, &self.frame2), &d);
     }
 
     /// A part's rigid body.
@@ -566,6 +554,15 @@ impl Legs {
         mb.generalized_velocity_mut().fill(0.0);
         mb.forward_kinematics(&phys.bodies, false);
         mb.update_rigid_bodies(&mut phys.bodies, true);
+    }
+}
+
+/// How joint `j` turns: a knee is a hinge (its frame on the child in
+/// `frame2`, [`Joint::index`] order), the others ball joints.
+fn turn(j: Joint, frame2: &[Quat; 7]) -> motor::Turn {
+    match j {
+        Joint::Knee(_) => motor::Turn::Hinge(frame2[j.index()]),
+        _ => motor::Turn::Ball,
     }
 }
 

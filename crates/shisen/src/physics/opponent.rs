@@ -7,17 +7,16 @@
 
 use glam::Vec3;
 
-/// Masses of the opponent's head and gloves, kg, in
+/// Masses of the opponent's head, gloves and trunk, kg, in
 /// [`crate::physics::body::OpponentPart`] order. A glove carries the
 /// effective mass of the arm and body behind the punch: 2.9 kg, the mean
 /// of Olympic boxers' straight punches (2.9 +- 2.0 kg, Walilko, Viano &
 /// Bir 2005, Br. J. Sports Med. 39:710), so a 7 m/s jab stopped by a head
-/// delivers 10-20 N s as theirs did.
-pub const OPPONENT_MASS: [f32; 3] = [5.0, 2.9, 2.9];
-/// Mass of the opponent's trunk, kg: thorax and abdomen, 0.355 of a 75 kg
-/// body (Dempster's segment fractions, in Winter 2009, Biomechanics and
-/// Motor Control of Human Movement, table 4.1). A body shot meets it.
-pub const OPPONENT_TRUNK_MASS: f32 = 27.0;
+/// delivers 10-20 N s as theirs did. The trunk, which a body shot meets,
+/// is the thorax and abdomen, 0.355 of a 75 kg body (Dempster's segment
+/// fractions, in Winter 2009, Biomechanics and Motor Control of Human
+/// Movement, table 4.1).
+pub const OPPONENT_MASS: [f32; 4] = [5.0, 2.9, 2.9, 27.0];
 /// Drive of the opponent's parts, per kg: natural frequency 40 rad/s,
 /// critically damped (k = w^2, c = 2 w). A free glove tracks a 0.2 s
 /// punch closely; a blocked one pushes with at most about k x.

@@ -63,8 +63,7 @@ pub(super) fn validate(scene: &Scene, text: &str, file: &Path) -> Result<(), Loa
             ),
         ));
     }
-    let mut names: Vec<&str> = OpponentPart::ALL.map(OpponentPart::name).to_vec();
-    names.push(OpponentPart::Trunk.name());
+    let mut names: Vec<&str> = OpponentPart::EVERY.map(OpponentPart::name).to_vec();
     for (i, b) in scene.bodies.iter().enumerate() {
         // `point` and `opponent_body` name gaze targets that are no body
         // (a fixed point, the opponent's trunk).

@@ -10,7 +10,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::track::Track;
-use crate::physics::body::{OpponentPart, Seg, TRUNK_BELOW_HEAD};
+use crate::physics::body::{OpponentPart, Seg, trunk_under};
 use crate::physics::world::{PushPart, World};
 use shisen_face::{Face, FaceState};
 use shisen_gaze::oculomotor::{AxisCommand, GazeShiftLaw};
@@ -515,8 +515,8 @@ impl Timeline {
     /// Drive the scripted bodies to where their tracks are at `t + dt`,
     /// with the track's velocity and acceleration (finite differences of
     /// its last three positions).
-    /// The opponent's trunk goes where its head goes,
-    /// [`TRUNK_BELOW_HEAD`] lower.
+    /// The opponent's trunk goes where its head goes, under it
+    /// ([`trunk_under`]).
     pub fn drive(&mut self, world: &mut World, t: f64, dt: f64) {
         let head = world.part(OpponentPart::Head);
         let mut carried = None;
@@ -534,7 +534,7 @@ impl Timeline {
         }
         let (p, v, a) = carried.unwrap_or((world.position(head), Vec3::ZERO, Vec3::ZERO));
         let trunk = world.part(OpponentPart::Trunk);
-        world.drive(trunk, p - Vec3::Y * TRUNK_BELOW_HEAD, v, a);
+        world.drive(trunk, trunk_under(p), v, a);
     }
 
     /// Run every event due by `t`, in time order.

@@ -15,7 +15,7 @@ use std::fmt::Write as _;
 use glam::{Quat, Vec3};
 
 use crate::physics::body::{
-    BodyPlan, JointKind, Shape, TRUNK_BELOW_HEAD, TRUNK_HALF_HEIGHT, TRUNK_RADIUS,
+    BodyPlan, JointKind, Shape, TRUNK_HALF_HEIGHT, TRUNK_RADIUS, trunk_under,
 };
 use crate::physics::legs::{
     FOOT_HALF_HEIGHT, FOOT_HALF_WIDTH, PELVIS_HALF, SHANK_RADIUS, SOLE_FRICTION, THIGH_RADIUS,
@@ -265,7 +265,7 @@ pub fn mjcf(plan: &BodyPlan, dt: f64, legs: Option<&BodyParams>) -> String {
     let _ = writeln!(
         x,
         "    <body name=\"torso\" mocap=\"true\" pos=\"{}\">{}</body>",
-        zup(plan.opponent_head - Vec3::Y * TRUNK_BELOW_HEAD),
+        zup(trunk_under(plan.opponent_head)),
         geom(trunk, Vec3::Y, 0.0, 2, 1)
     );
     let _ = writeln!(x, "  </worldbody>");
@@ -340,15 +340,10 @@ mod tests {
             .sum();
         // The opponent's mocap parts carry no mass in MJCF; rapier's are
         // dynamic bodies of their own.
-        let trunk = world
-            .rb(world.part(crate::physics::body::OpponentPart::Trunk))
-            .mass();
-        let opponent: f32 = trunk
-            + world
-                .parts()
-                .iter()
-                .map(|&b| world.rb(b).mass())
-                .sum::<f32>();
+        let opponent: f32 = crate::physics::body::OpponentPart::EVERY
+            .iter()
+            .map(|&p| world.rb(world.part(p)).mass())
+            .sum();
         assert!(
             (masses - (rapier - opponent)).abs() < 0.05,
             "MJCF {masses} kg, rapier {} kg",

@@ -7,10 +7,10 @@ use rapier3d::prelude::*;
 use super::{BodyInfo, Group32, Owner, SOLVER_ITERATIONS, SOLVER_SUBSTEPS, VH_GROUP};
 use crate::physics::body::{
     BodyPlan, Group, HARD_STOP_MARGIN_DEG, JointKind, OpponentPart, Seg, Segment, Shape,
-    TRUNK_BELOW_HEAD, TRUNK_HALF_HEIGHT, TRUNK_RADIUS,
+    TRUNK_HALF_HEIGHT, TRUNK_RADIUS, trunk_under,
 };
 use crate::physics::motor::{self, Turn};
-use crate::physics::opponent::{OPPONENT_MASS, OPPONENT_TRUNK_MASS};
+use crate::physics::opponent::OPPONENT_MASS;
 use shisen_gaze::vision::BodyId;
 
 pub(super) fn collider_for(shape: Shape, axis_to: Vec3, at: Vec3) -> ColliderBuilder {
@@ -216,7 +216,7 @@ pub(super) fn add_opponent(
     phys: &mut PhysicsWorld,
     plan: &BodyPlan,
     bodies: &mut Vec<BodyInfo>,
-) -> ([BodyId; 3], BodyId) {
+) -> [BodyId; 4] {
     let positions = [
         plan.opponent_head,
         plan.opponent_gloves[0],
@@ -262,17 +262,18 @@ pub(super) fn add_opponent(
         });
         BodyId::new(idx)
     });
-    (parts, add_trunk(phys, plan, bodies))
+    let [head, left, right] = parts;
+    [head, left, right, add_trunk(phys, plan, bodies)]
 }
 
 /// The opponent's trunk, under its head: driven as the other parts are
-/// (its target the head's, [`TRUNK_BELOW_HEAD`] lower), upright, touching
+/// (its target under the head's, [`trunk_under`]), upright, touching
 /// only the VH (the gloves' own guard positions pass in front of it).
 fn add_trunk(phys: &mut PhysicsWorld, plan: &BodyPlan, bodies: &mut Vec<BodyInfo>) -> BodyId {
     let idx = bodies.len();
     let h = phys.insert_body(
         RigidBodyBuilder::dynamic()
-            .translation(plan.opponent_head - Vec3::Y * TRUNK_BELOW_HEAD)
+            .translation(trunk_under(plan.opponent_head))
             .gravity_scale(0.0)
             .lock_rotations()
             .can_sleep(false)
@@ -281,7 +282,7 @@ fn add_trunk(phys: &mut PhysicsWorld, plan: &BodyPlan, bodies: &mut Vec<BodyInfo
     let only_vh = InteractionGroups::new(Group32::GROUP_2, VH_GROUP, Default::default());
     let c = phys.insert_collider(
         ColliderBuilder::capsule_y(TRUNK_HALF_HEIGHT, TRUNK_RADIUS)
-            .mass(OPPONENT_TRUNK_MASS)
+            .mass(OPPONENT_MASS[OpponentPart::Trunk.index()])
             .collision_groups(only_vh)
             .user_data(idx as u128),
         Some(h),

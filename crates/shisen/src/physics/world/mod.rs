@@ -128,10 +128,8 @@ pub struct World {
     /// Every named body, indexed by [`BodyId`]; VH segments first, in plan
     /// order, then the opponent's parts, then props.
     pub bodies: Vec<BodyInfo>,
-    /// The body of each opponent part ([`OpponentPart`] order).
-    opponent: [BodyId; 3],
-    /// The opponent's trunk ([`OpponentPart::Trunk`]).
-    opponent_trunk: BodyId,
+    /// The body of each opponent part ([`OpponentPart::EVERY`] order).
+    opponent: [BodyId; 4],
     /// Each segment's joint as a link of the physical body's articulation
     /// (a free root's shoulders and elbows), driven by its motors;
     /// `None`: a joint of its own, driven by torques.
@@ -215,14 +213,13 @@ impl World {
             })
             .collect();
         let subtree = subtrees(&plan);
-        let (opponent, opponent_trunk) = add_opponent(&mut phys, &plan, &mut bodies);
+        let opponent = add_opponent(&mut phys, &plan, &mut bodies);
         World {
             phys,
             plan,
             dt,
             bodies,
             opponent,
-            opponent_trunk,
             links,
             anchor_parent,
             subtree,
@@ -297,15 +294,12 @@ impl World {
 
     /// The body of an opponent part.
     pub fn part(&self, p: OpponentPart) -> BodyId {
-        match p {
-            OpponentPart::Trunk => self.opponent_trunk,
-            _ => self.opponent[p.index()],
-        }
+        self.opponent[p.index()]
     }
 
     /// The opponent's bodies: head, left glove, right glove.
     pub fn parts(&self) -> [BodyId; 3] {
-        self.opponent
+        OpponentPart::ALL.map(|p| self.part(p))
     }
 
     /// The rapier body carrying a body (for a welded segment, its
