@@ -244,7 +244,7 @@ mod tests {
             ..Seen::test_default()
         };
         let seen = vec![
-            at(4, DVec3::new(0.0, 1.68, 1.2)),
+            at(4, DVec3::new(0.0, 1.68, 0.8)),
             at(5, DVec3::new(0.12, 1.5, 0.9)),
             at(6, DVec3::new(-0.12, 1.5, 0.9)),
         ];

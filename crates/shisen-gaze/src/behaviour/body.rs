@@ -201,12 +201,17 @@ impl BodyPlan {
         self.still_since = t + p.guard_reaction + p.step_time;
     }
 
+    /// Whether a footwork step is under way at `t`.
+    pub fn stepping(&self, t: f64) -> bool {
+        self.step.as_ref().is_some_and(|s| !s.done(t))
+    }
+
     /// Step `by` m toward `point` (world; the opponent; away if `by` is
     /// negative), at most `max_step`, unless a step is under way: in to
     /// attack from long range, out from a read punch. Returns when the
     /// foot lands (now, if no step is taken).
     pub fn step_in(&mut self, p: &BehaviourParams, point: DVec3, by: f64, t: f64) -> f64 {
-        if !p.footwork || by.abs() < 1e-3 || self.step.as_ref().is_some_and(|s| !s.done(t)) {
+        if !p.footwork || by.abs() < 1e-3 || self.stepping(t) {
             return t;
         }
         let pelvis = at(&self.step, t);

@@ -127,9 +127,11 @@ pub struct OpponentView<'a> {
 pub struct Behaviour {
     plan: Plan,
     reaches: [Option<Reach>; 2],
-    /// The torso's step into a punch (an offset from rest, out and back
-    /// with the punch).
-    lunge: Option<Reach>,
+    /// The torso's travel into each glove's punch (an offset from rest,
+    /// out and back with the punch): the trunk rides on their sum, so in
+    /// a combination the next punch's shoulder goes forward as the one
+    /// before comes back.
+    lunge: [Option<Reach>; 2],
     /// Guard-stance glove positions (world), left and right.
     stance: [DVec3; 2],
     /// The body's plan: evasions, footwork, the trunk's turn.
@@ -154,9 +156,11 @@ pub struct Behaviour {
     look: Look,
     /// The punches still to come in the combination under way.
     combo: Combo,
-    /// When the step into the attack under way lands, s (the punch is
-    /// timed to land with it).
+    /// When the step into the attack under way lands, s.
     lands: f64,
+    /// Whether that step brings the target within reach (the punch is
+    /// timed to land with the foot) or only nearer.
+    timed: bool,
     /// The body cue in view has been weighed (once per cue).
     cued: bool,
     /// Body cues the VH acted on.
@@ -175,7 +179,7 @@ impl Behaviour {
         Behaviour {
             plan: Plan::Idle,
             reaches: [None, None],
-            lunge: None,
+            lunge: [None, None],
             stance: [DVec3::new(0.11, 1.56, 0.27), DVec3::new(-0.11, 1.56, 0.27)],
             body: BodyPlan::default(),
             punches_thrown: 0,
@@ -189,6 +193,7 @@ impl Behaviour {
             look: Look::Own,
             combo: Combo::default(),
             lands: f64::NEG_INFINITY,
+            timed: false,
             cued: false,
             cue_reads: 0,
         }
@@ -274,7 +279,7 @@ impl Behaviour {
         dt: f64,
         rng: &mut impl Rng,
     ) -> TopDown {
-        for r in self.reaches.iter_mut().chain([&mut self.lunge]) {
+        for r in self.reaches.iter_mut().chain(self.lunge.iter_mut()) {
             if r.as_ref().is_some_and(|r| r.done(t)) {
                 *r = None;
             }
@@ -306,12 +311,9 @@ impl Behaviour {
             self.command = Command::Nothing;
             return face;
         }
-        // An attack's punches and its step in own the feet; then the range
-        // again (stepping out).
-        let attacking = match self.plan {
-            Plan::Attack { thrown, .. } => thrown || t < self.lands,
-            _ => false,
-        };
+        // An attack owns the feet from its decision (its steps in, its
+        // punches); then the range again (stepping out).
+        let attacking = matches!(self.plan, Plan::Attack { .. });
         if !attacking {
             self.body.keep_range(p, opponent_head, t);
         }
@@ -390,7 +392,7 @@ impl Behaviour {
 
     /// Where the torso is stepped to now (offset from its rest position).
     pub fn torso_offset(&self, t: f64) -> DVec3 {
-        self.lunge.as_ref().map_or(DVec3::ZERO, |r| r.at(t))
+        self.lunge.iter().flatten().map(|r| r.at(t)).sum()
     }
 
     /// Desired world positions of the VH's left and right gloves now.

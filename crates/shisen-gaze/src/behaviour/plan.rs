@@ -88,6 +88,26 @@ impl Combo {
     }
 }
 
+/// How long after its decision an attack waits for its first punch to
+/// come within reach (a step in and the eyes' landing take about 0.6 s),
+/// s; then it is given up.
+const PATIENCE: f64 = 1.5;
+
+/// How long a combination's punches take after the first, at most, s
+/// (three punches half a punch apart, and a step in).
+const COMBO_TIME: f64 = 1.0;
+
+/// Where on the opponent a punch at the head or body (`to_body`) aims,
+/// from the head's centre, before the aim's random spread: the body shot
+/// at the chest under the head.
+fn aim_offset(to_body: bool) -> DVec3 {
+    if to_body {
+        DVec3::new(0.0, -0.35, 0.05)
+    } else {
+        DVec3::ZERO
+    }
+}
+
 /// The gaze on the incoming glove `threat` (guard and evasion).
 fn on_threat(threat: BodyId, view: &OpponentView, pers: &Personality) -> TopDown {
     TopDown {
@@ -336,20 +356,36 @@ impl Behaviour {
             *l = looked;
         }
         if !thrown && t >= punch_at {
-            self.throw(hand, target.clone(), (decided, looked), view, t, p);
+            let to = self.punch_reach(hand, &target, view, t, p).map(|r| r.to);
+            if to.is_none_or(|to| self.in_reach(hand, to, t, p)) {
+                self.throw(hand, target.clone(), (decided, looked), view, t, p);
+            } else if t > decided + PATIENCE {
+                // The opponent stayed out of reach: no punch.
+                self.combo = Combo::default();
+                self.plan = Plan::Idle;
+            }
         } else if thrown {
             // A combination: the next punch starts as the one before comes
-            // back (the other hand), or once it is back (the same hand).
+            // back (the other hand), or once it is back (the same hand),
+            // and once it can reach (the feet may step in first).
             let next = self.combo.peek().filter(|&(h, _)| {
                 let back = self.reaches[hand]
                     .as_ref()
                     .is_none_or(|r| t >= r.t0 + 0.5 * r.dur);
                 self.reaches[h].is_none() && back
             });
+            let aim = |body: bool| {
+                let head = view.seen.iter().find(|s| s.body == view.parts[0]);
+                head.map(|s| s.position + aim_offset(body))
+            };
             if let Some((h, body)) = next {
-                self.combo.pop();
-                let target = self.attack_target(body, p, pers, view, rng);
-                self.throw(h, target, (decided, looked), view, t, p);
+                if aim(body).is_none_or(|to| self.in_reach(h, to, t, p)) {
+                    self.combo.pop();
+                    let target = self.attack_target(body, p, pers, view, rng);
+                    self.throw(h, target, (decided, looked), view, t, p);
+                } else if t > decided + PATIENCE + COMBO_TIME {
+                    self.combo = Combo::default();
+                }
             } else if self.combo.peek().is_none() && self.reaches[hand].is_none() {
                 self.body.recover(t);
                 self.plan = Plan::Idle;
@@ -362,8 +398,9 @@ impl Behaviour {
     }
 
     /// Throw glove `hand` at `target` now (the attack decided and looked
-    /// at as `when` says), with the lunge the distance needs if the trunk
-    /// is not already lunging; called off if the target is out of view.
+    /// at as `when` says), with the lunge the distance needs if that
+    /// glove's trunk travel is not already under way; called off if the
+    /// target is out of view.
     fn throw(
         &mut self,
         hand: usize,
@@ -375,8 +412,8 @@ impl Behaviour {
     ) {
         match self.punch_reach(hand, &target, view, t, p) {
             Some(r) => {
-                if self.lunge.is_none() {
-                    self.lunge = self.lunge_for(hand, r.to, t, p);
+                if self.lunge[hand].is_none() {
+                    self.lunge[hand] = self.lunge_for(hand, r.to, t, p);
                 }
                 self.body.punch(hand, t, p.punch_time);
                 self.reaches[hand] = Some(r);
@@ -438,12 +475,9 @@ impl Behaviour {
         // What the punch needs beyond the lunge, the feet cover.
         self.lands = t;
         if let Some(r) = self.punch_reach(hand, &target, view, t, p) {
-            // The glove lands a contact's width before the target's centre,
-            // aimed `AIM_DEPTH` deep: a punch that needs no more than that
-            // still touches, and takes no step.
-            let need = self.shortfall(hand, r.to).0 - p.max_lunge - (CONTACT - AIM_DEPTH);
+            let need = self.need(hand, r.to, t, p);
             if need > AIM_DEPTH {
-                self.lands = self.body.step_in(p, r.to, need, t);
+                self.step_toward(r.to, need, t, p);
             }
         }
         self.plan = Plan::Attack {
@@ -467,24 +501,56 @@ impl Behaviour {
         rng: &mut impl Rng,
     ) -> TopDown {
         let n = Normal::new(0.0, p.target_spread.max(1e-12)).expect("valid sd");
-        let offset = DVec3::new(n.sample(rng), n.sample(rng), 0.0);
-        if to_body {
-            TopDown {
-                name: "opponent_body".into(),
-                body: Some(view.parts[0]),
-                spot: Spot::Trunk,
-                offset: DVec3::new(0.0, -0.35, 0.05) + offset,
-                amount: pers.a_attack,
-            }
+        let offset = aim_offset(to_body) + DVec3::new(n.sample(rng), n.sample(rng), 0.0);
+        let (name, spot) = if to_body {
+            ("opponent_body", Spot::Trunk)
         } else {
-            TopDown {
-                name: "head".into(),
-                body: Some(view.parts[0]),
-                spot: Spot::Centre,
-                offset,
-                amount: pers.a_attack,
-            }
+            ("head", Spot::Centre)
+        };
+        TopDown {
+            name: name.into(),
+            body: Some(view.parts[0]),
+            spot,
+            offset,
+            amount: pers.a_attack,
         }
+    }
+
+    /// How far glove `hand` falls short of `to` at `t` beyond what the
+    /// trunk's lunge gives, m (the lunges under way not counted: the one
+    /// before in a combination is on its way back). The glove lands a
+    /// contact's width before the target's centre, aimed `AIM_DEPTH`
+    /// deep: a punch that needs no more than `AIM_DEPTH` still touches.
+    fn need(&self, hand: usize, to: DVec3, t: f64, p: &BehaviourParams) -> f64 {
+        let short = self.shortfall(hand, to + self.torso_offset(t)).0;
+        short - p.max_lunge - (CONTACT - AIM_DEPTH)
+    }
+
+    /// Step in toward `to` by `need` (a step at most): the feet belong to
+    /// the attack until the foot lands (`lands`). A step that closes the
+    /// gap times the punch to land with the foot (`timed`); a longer way
+    /// is stepped first and looked at again. Whether a step was taken
+    /// (none without footwork, as in the seed).
+    fn step_toward(&mut self, to: DVec3, need: f64, t: f64, p: &BehaviourParams) -> bool {
+        self.lands = self.body.step_in(p, to, need, t);
+        self.timed = need <= p.max_step + AIM_DEPTH;
+        self.lands > t
+    }
+
+    /// Whether glove `hand` can throw at `to` now: within reach with the
+    /// trunk's lunge, or in the last half punch of a step in that brings
+    /// it there. When it cannot and the feet are free, they step in
+    /// ([`Behaviour::step_toward`]) and the punch waits; without footwork
+    /// the punch goes regardless.
+    fn in_reach(&mut self, hand: usize, to: DVec3, t: f64, p: &BehaviourParams) -> bool {
+        if t < self.lands {
+            return self.timed && t >= self.lands - 0.5 * p.punch_time;
+        }
+        let need = self.need(hand, to, t, p);
+        if need <= AIM_DEPTH {
+            return true;
+        }
+        !self.body.stepping(t) && !self.step_toward(to, need, t, p)
     }
 
     fn punch_reach(
@@ -520,9 +586,11 @@ impl Behaviour {
 
     /// The lunge a punch at `to` with glove `hand` needs: the part of the
     /// shoulder-to-target distance beyond the straight arm (less 5 %),
-    /// horizontally toward the target, at most `max_lunge`.
+    /// horizontally toward the target, at most `max_lunge`. Measured from
+    /// the shoulder without the lunges under way: in a combination the
+    /// punch before's travel is on its way back as this one's goes out.
     fn lunge_for(&self, hand: usize, to: DVec3, t: f64, p: &BehaviourParams) -> Option<Reach> {
-        let (short, shoulder) = self.shortfall(hand, to);
+        let (short, shoulder) = self.shortfall(hand, to + self.torso_offset(t));
         let len = short.clamp(0.0, p.max_lunge);
         let dir = DVec3::new(to.x - shoulder.x, 0.0, to.z - shoulder.z).normalize_or_zero();
         (len > 0.0).then(|| Reach {
