@@ -590,6 +590,7 @@ fn stats_table(ui: &mut egui::Ui, c: &Card) {
                 c.vh.missed.to_string(),
             );
             row(ui, "evasions", "-".to_string(), c.vh.evasions.to_string());
+            row(ui, "feints", "-".to_string(), c.vh.feints.to_string());
             row(
                 ui,
                 "knockdowns",
@@ -620,6 +621,7 @@ fn action_color(a: ActionKind) -> Option<Color32> {
         ActionKind::Idle => None,
         ActionKind::Guard => Some(Color32::from_rgb(230, 210, 80)),
         ActionKind::Attack => Some(VH),
+        ActionKind::Feint => Some(Color32::from_rgb(120, 190, 230)),
         ActionKind::Slip | ActionKind::Duck | ActionKind::LeanBack => {
             Some(Color32::from_rgb(180, 110, 230))
         }

@@ -493,6 +493,11 @@ pub fn soak_cmd(
             f.missed,
         );
     }
+    println!(
+        "  feints, the VH: {} ({:.1} a minute)",
+        r.card.vh.feints,
+        f64::from(r.card.vh.feints) * per_min
+    );
     let t = &r.tally;
     println!(
         "  blows: the opponent landed {} hits ({} blocked, {} punches stopped dead by the VH's guard), the VH {} ({} blocked)",

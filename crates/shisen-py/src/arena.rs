@@ -39,7 +39,8 @@ pub const GLOVE_PEAK: f64 = 9.0;
 pub const HEAD_PEAK: f64 = 2.0;
 /// A minimum-jerk move's peak speed over its mean (15/8).
 const MIN_JERK_PEAK: f64 = 1.875;
-/// The VH's actions in the order of the one-hot observations.
+/// The VH's actions in the order of the one-hot observations. A feint
+/// reads as an attack: it is the start of one, and what it shows is that.
 pub const ACTIONS: [ActionKind; 6] = [
     ActionKind::Idle,
     ActionKind::Guard,
@@ -48,6 +49,15 @@ pub const ACTIONS: [ActionKind; 6] = [
     ActionKind::Duck,
     ActionKind::LeanBack,
 ];
+/// The action as the one-hot shows it ([`ACTIONS`]).
+fn shown(a: ActionKind) -> ActionKind {
+    if a == ActionKind::Feint {
+        ActionKind::Attack
+    } else {
+        a
+    }
+}
+
 /// The opponent's observation's length.
 pub const OPPONENT_OBS: usize = 30;
 /// The VH's observation's length.
@@ -195,7 +205,7 @@ impl Bout {
         let s = self.sim.last();
         let head = at(Seg::Head.body());
         let gaze = s.map_or(head, |s| s.gaze_point);
-        let action = s.map_or(ActionKind::Idle, |s| s.action);
+        let action = s.map_or(ActionKind::Idle, |s| shown(s.action));
         let mut v: Vec<f64> = Vec::with_capacity(OPPONENT_OBS);
         for p in [head, at(Seg::GloveL.body()), at(Seg::GloveR.body())] {
             v.extend(p.to_array());
@@ -236,7 +246,7 @@ impl Bout {
             v.extend((inv * (w.position(g.body()).as_dvec3() - head)).to_array());
         }
         let s = self.sim.last();
-        let action = s.map_or(ActionKind::Idle, |s| s.action);
+        let action = s.map_or(ActionKind::Idle, |s| shown(s.action));
         v.extend(ACTIONS.map(|a| f64::from(u8::from(a == action))));
         v.push(f64::from(u8::from(s.is_some_and(|s| s.staggered))));
         for (o, x) in out.iter_mut().zip(v) {

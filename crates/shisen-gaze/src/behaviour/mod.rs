@@ -51,12 +51,17 @@ pub enum ActionKind {
     Duck,
     /// Leaning back out of a punch's reach.
     LeanBack,
+    /// The start of a punch without the punch, to draw a reaction.
+    Feint,
 }
 
 impl ActionKind {
     /// Whether the action meets a seen punch (a guard or an evasion).
     pub fn defends(self) -> bool {
-        !matches!(self, ActionKind::Idle | ActionKind::Attack)
+        !matches!(
+            self,
+            ActionKind::Idle | ActionKind::Attack | ActionKind::Feint
+        )
     }
 }
 
@@ -140,6 +145,8 @@ pub struct Behaviour {
     pub punches_thrown: u32,
     /// Evasions the VH has started.
     pub evasions: u32,
+    /// Feints the VH has made.
+    pub feints: u32,
     /// The glove whose punch was last weighed for an evasion.
     considered: Option<BodyId>,
     /// How far the guard sits below its stance now, m.
@@ -196,6 +203,7 @@ impl Behaviour {
             timed: false,
             cued: false,
             cue_reads: 0,
+            feints: 0,
         }
     }
 
@@ -237,6 +245,7 @@ impl Behaviour {
             Plan::Guard { .. } => ActionKind::Guard,
             Plan::Evade { kind, .. } => kind.into(),
             Plan::Attack { .. } => ActionKind::Attack,
+            Plan::Feint { .. } => ActionKind::Feint,
         }
     }
 
@@ -247,6 +256,7 @@ impl Behaviour {
             Plan::Idle => None,
             Plan::Guard { threat, .. } | Plan::Evade { threat, .. } => Some(&names[threat.index()]),
             Plan::Attack { target, .. } => Some(&target.name),
+            Plan::Feint { .. } => Some("head"),
         }
     }
 
@@ -349,6 +359,7 @@ impl Behaviour {
                 t,
                 rng,
             ),
+            Plan::Feint { hand, until } => self.feinting((hand, until), p, pers, view, t, rng),
             Plan::Idle => None,
         };
         let request = if own {

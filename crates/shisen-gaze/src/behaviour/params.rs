@@ -151,6 +151,17 @@ pub struct BehaviourParams {
     #[serde(default)]
     #[schemars(range(min = 0.0, max = 1.0))]
     pub combination: f64,
+    /// Share of the VH's attack decisions that open with a feint: the
+    /// start of a punch without the punch (eyes on your head, glove and
+    /// shoulder 8 cm toward it, out and back in 0.3 s), then, with the
+    /// chance of a combination's next punch, the real punch with the
+    /// other hand into the reaction it drew. A probability, 0-1. Default
+    /// 0: the seed does not feint. The levels set 0 (novice), 0.1
+    /// (amateur) and 0.2 (pro): our amounts, as we found no published
+    /// count of boxers' feints.
+    #[serde(default)]
+    #[schemars(range(min = 0.0, max = 1.0))]
+    pub feint: f64,
     /// How far the guard's gloves sit below the stance, m (fatigue lowers
     /// it), 0-0.3. Default 0; 0.3 m is arms hanging, as between rounds.
     #[schemars(range(min = 0.0, max = 0.3))]
@@ -196,6 +207,7 @@ impl Default for BehaviourParams {
             jab_share: 0.5,
             cue_speed: default_cue_speed(),
             combination: 0.0,
+            feint: 0.0,
             guard_drop: 0.0,
         }
     }

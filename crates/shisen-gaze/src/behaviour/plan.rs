@@ -41,6 +41,10 @@ pub(super) enum Plan {
         looked: Option<f64>,
         thrown: bool,
     },
+    Feint {
+        hand: usize,
+        until: f64,
+    },
 }
 
 /// The punches still to come in a combination, in order: (glove, at the
@@ -107,6 +111,18 @@ fn aim_offset(to_body: bool) -> DVec3 {
         DVec3::ZERO
     }
 }
+
+/// A feint's glove twitch toward the target, m: the start of a punch
+/// (the user's feint twitches 5 cm; sim/punch.rs).
+const FEINT_GLOVE: f64 = 0.08;
+
+/// A feint's shoulder travel toward the target, m: the trunk's first
+/// tenth of a second of a punch's lunge.
+const FEINT_LUNGE: f64 = 0.08;
+
+/// A feint out and back, s (a punch's first half is about a quarter of a
+/// second).
+const FEINT_TIME: f64 = 0.3;
 
 /// The gaze on the incoming glove `threat` (guard and evasion).
 fn on_threat(threat: BodyId, view: &OpponentView, pers: &Personality) -> TopDown {
@@ -452,9 +468,82 @@ impl Behaviour {
         {
             let hand = usize::from(rng.random::<f64>() >= p.jab_share);
             let to_body = rng.random::<f64>() < p.body_shot_share;
+            // No draw without feints: the seed's random stream stays.
+            if p.feint > 0.0 && rng.random::<f64>() < p.feint {
+                return self.feint(hand, pers, view, t);
+            }
             return Some(self.start_attack((hand, to_body), p, pers, view, t, rng));
         }
         None
+    }
+
+    /// A feint with glove `hand`: a punch's start without the punch (the
+    /// eyes on the opponent's head, the glove and shoulder a few
+    /// centimetres toward it, out and back), to draw a reaction to punch
+    /// into. The request (the head); `None` with the head out of view.
+    fn feint(
+        &mut self,
+        hand: usize,
+        pers: &Personality,
+        view: &OpponentView,
+        t: f64,
+    ) -> Option<TopDown> {
+        let head = view.seen.iter().find(|s| s.body == view.parts[0])?;
+        let from = self.glove(hand, t);
+        let dir = (head.position - from).normalize_or_zero();
+        self.reaches[hand] = Some(Reach {
+            from,
+            to: from + dir * FEINT_GLOVE,
+            t0: t,
+            dur: FEINT_TIME,
+            back: true,
+        });
+        let flat = DVec3::new(dir.x, 0.0, dir.z).normalize_or_zero();
+        self.lunge[hand] = Some(Reach {
+            from: DVec3::ZERO,
+            to: flat * FEINT_LUNGE,
+            t0: t,
+            dur: FEINT_TIME,
+            back: true,
+        });
+        self.feints += 1;
+        self.plan = Plan::Feint {
+            hand,
+            until: t + FEINT_TIME,
+        };
+        Some(self.on_head(pers, view))
+    }
+
+    /// The gaze on the opponent's head, as an attack's.
+    fn on_head(&self, pers: &Personality, view: &OpponentView) -> TopDown {
+        TopDown {
+            name: "head".into(),
+            body: Some(view.parts[0]),
+            spot: Spot::Centre,
+            offset: DVec3::ZERO,
+            amount: pers.a_attack,
+        }
+    }
+
+    /// A feint with glove `hand` under way until `until`: the eyes on the
+    /// head; once it is over, idle or (with the chance of a combination's
+    /// next punch) the real punch with the other hand, into the reaction
+    /// it drew. The action's request; `None` once idle.
+    pub(super) fn feinting(
+        &mut self,
+        (hand, until): (usize, f64),
+        p: &BehaviourParams,
+        pers: &Personality,
+        view: &OpponentView,
+        t: f64,
+        rng: &mut impl Rng,
+    ) -> Option<TopDown> {
+        if t < until {
+            return Some(self.on_head(pers, view));
+        }
+        self.plan = Plan::Idle;
+        (p.attacks && rng.random::<f64>() < p.combination)
+            .then(|| self.start_attack((1 - hand, false), p, pers, view, t, rng))
     }
 
     /// Decide to punch with glove `hand` at the opponent's head or body

@@ -38,11 +38,10 @@ fn aimed_glove_test_follows_the_three_rules() {
     assert!((point - (glove + towards * 4.0 * 0.4 * ttc)).length() < 1e-9);
 }
 
-/// The planner alone for `secs` at 1 kHz against a still opponent whose
-/// head is `range` m in front (gloves at its sides), attacking eagerly
-/// with every attack a combination: each punch's throw time and the
-/// trunk's travel toward the opponent at that punch's peak.
-fn punches_at(range: f64, secs: f64) -> Vec<(f64, f64)> {
+/// The planner alone with `p` for `secs` at 1 kHz against a still
+/// opponent whose head is `range` m in front (gloves at its sides),
+/// calling `each` after every tick.
+fn run_plan(p: &BehaviourParams, range: f64, secs: f64, mut each: impl FnMut(&Behaviour, f64)) {
     use rand::SeedableRng;
     let head = DVec3::new(0.0, 1.68, range);
     let s = [
@@ -62,22 +61,36 @@ fn punches_at(range: f64, secs: f64) -> Vec<(f64, f64)> {
             DVec3::new(0.0, 1.4, 0.0),
         ],
     };
-    let p = BehaviourParams {
-        attack_rate: 2.0,
-        combination: 1.0,
-        ..BehaviourParams::default()
-    };
     let pers = Personality::default();
     let mut b = Behaviour::new();
     let mut rng = rand::rngs::StdRng::seed_from_u64(5);
     let dt = 0.001;
-    let half = 0.5 * p.punch_time;
-    let mut thrown: Vec<(f64, f64)> = Vec::new();
     for i in 0..(secs / dt) as usize {
         let t = i as f64 * dt;
-        let n = b.punches_thrown;
-        b.step(&p, &pers, &view, t, dt, &mut rng);
+        b.step(p, &pers, &view, t, dt, &mut rng);
+        each(&b, t);
+    }
+}
+
+/// An eager attacker whose every attack is a combination.
+fn eager() -> BehaviourParams {
+    BehaviourParams {
+        attack_rate: 2.0,
+        combination: 1.0,
+        ..BehaviourParams::default()
+    }
+}
+
+/// Each punch's throw time and the trunk's travel toward the opponent at
+/// that punch's peak, over `secs` against a head `range` m away.
+fn punches_at(range: f64, secs: f64) -> Vec<(f64, f64)> {
+    let p = eager();
+    let half = 0.5 * p.punch_time;
+    let mut thrown: Vec<(f64, f64)> = Vec::new();
+    let mut n = 0;
+    run_plan(&p, range, secs, |b, t| {
         if b.punches_thrown > n {
+            n = b.punches_thrown;
             thrown.push((t, f64::NAN));
         }
         for (at, travel) in &mut thrown {
@@ -85,7 +98,7 @@ fn punches_at(range: f64, secs: f64) -> Vec<(f64, f64)> {
                 *travel = b.torso_offset(t).z;
             }
         }
-    }
+    });
     thrown.retain(|(_, travel)| !travel.is_nan());
     thrown
 }
@@ -110,4 +123,36 @@ fn a_punch_waits_for_its_target_to_come_within_reach() {
     assert_eq!(punches_at(2.5, 4.0), vec![]);
     // In reach: punches flow.
     assert!(!punches_at(0.8, 4.0).is_empty());
+}
+
+#[test]
+fn a_feint_is_a_punch_s_start_without_the_punch() {
+    // Every attack a feint, none followed by a punch.
+    let p = BehaviourParams {
+        feint: 1.0,
+        combination: 0.0,
+        ..eager()
+    };
+    let (mut feinting, mut reach, mut punches, mut feints) = (0, 0.0_f64, 0, 0);
+    run_plan(&p, 0.8, 4.0, |b, t| {
+        if b.action() == ActionKind::Feint {
+            feinting += 1;
+            reach = reach.max(b.torso_offset(t).z);
+        }
+        (punches, feints) = (b.punches_thrown, b.feints);
+    });
+    assert_eq!(punches, 0);
+    assert!(feints >= 3, "{feints} feints");
+    // The shoulder goes a few centimetres toward the head, not a punch's
+    // lunge.
+    assert!((0.05..0.1).contains(&reach), "trunk travel {reach}");
+    assert!(feinting >= 3 * 250, "{feinting} ms feinting");
+    // With a combination's chance 1 the real punch follows each feint.
+    let p = BehaviourParams {
+        feint: 1.0,
+        ..eager()
+    };
+    let mut after = (0, 0);
+    run_plan(&p, 0.8, 4.0, |b, _| after = (b.feints, b.punches_thrown));
+    assert!(after.0 >= 2 && after.1 >= after.0, "{after:?}");
 }

@@ -141,6 +141,7 @@ impl Opponent {
         p.effort.punch_cost = fresh.punch_cost * l.costs;
         p.effort.round_drain = fresh.round_drain * l.costs;
         b.combination = l.combination;
+        b.feint = l.feint;
         pers.anticipation = l.anticipation;
         pers.a_face = l.a_face;
         // Where each style fights (behaviour/range.rs): an out-fighter
@@ -193,6 +194,8 @@ struct LevelValues {
     costs: f64,
     /// Chance of each follow-up punch (a combination).
     combination: f64,
+    /// Share of attacks that open with a feint.
+    feint: f64,
     /// Share of body cues acted on before the glove flies.
     anticipation: f64,
     /// The pull of the opponent's face, the visual pivot: above the
@@ -218,6 +221,7 @@ impl Level {
                 a_anchor: 1.0,
                 costs: 1.5,
                 combination: 0.15,
+                feint: 0.0,
                 anticipation: 0.0,
                 a_face: 0.5,
             },
@@ -231,6 +235,7 @@ impl Level {
                 a_anchor: 6.0,
                 costs: 1.0,
                 combination: 0.45,
+                feint: 0.1,
                 anticipation: 0.5,
                 a_face: 1.5,
             },
@@ -244,6 +249,7 @@ impl Level {
                 a_anchor: 8.0,
                 costs: 0.75,
                 combination: 0.6,
+                feint: 0.2,
                 anticipation: 0.85,
                 a_face: 4.0,
             },

@@ -123,8 +123,8 @@ pub struct Sim {
     pub stats: Stats,
     /// The crowd round the ring (it reacts; nothing depends on it).
     pub crowd: crowd::Crowd,
-    /// The VH's punches and evasions already counted.
-    counted: (u32, u32),
+    /// The VH's punches, evasions and feints already counted.
+    counted: (u32, u32, u32),
     /// The bell rung this tick, if any.
     bell: Option<Bell>,
     last: Option<Sample>,
@@ -205,7 +205,7 @@ impl Sim {
             effort: Effort::default(),
             stats: Stats::default(),
             crowd: crowd::Crowd::default(),
-            counted: (0, 0),
+            counted: (0, 0, 0),
             bell: None,
             last: None,
         }
@@ -279,7 +279,7 @@ impl Sim {
         self.lower = self.lower.restarted(&self.model.params.body);
         self.balance = self.balance.restarted();
         self.knocked_at = None;
-        self.counted = (0, 0);
+        self.counted = (0, 0, 0);
         self.resets += 1;
     }
 
@@ -342,11 +342,12 @@ impl Sim {
         let t = self.time();
         let round = self.round(t);
         let b = &self.behaviour;
-        let (punches, evasions) = (
+        let (punches, evasions, feints) = (
             b.punches_thrown.saturating_sub(self.counted.0),
             b.evasions.saturating_sub(self.counted.1),
+            b.feints.saturating_sub(self.counted.2),
         );
-        self.counted = (b.punches_thrown, b.evasions);
+        self.counted = (b.punches_thrown, b.evasions, b.feints);
         if punches > 0
             && let Some(hand) = b.attack_hand()
         {
@@ -358,6 +359,9 @@ impl Sim {
         }
         for _ in 0..evasions {
             self.stats.evaded(round);
+        }
+        for _ in 0..feints {
+            self.stats.feinted(round);
         }
         let mut x = Exertion {
             punches,

@@ -60,6 +60,8 @@ pub struct FighterStats {
     pub missed: u32,
     /// Punches evaded (slipped, ducked, leant away from): the VH's only.
     pub evasions: u32,
+    /// Feints made (the VH's; yours are not counted).
+    pub feints: u32,
     /// Times this fighter was knocked down (a physical body only:
     /// `vh.body.pelvis: Balanced`).
     pub knockdowns: u32,
@@ -81,6 +83,7 @@ impl FighterStats {
         self.blocked += o.blocked;
         self.missed += o.missed;
         self.evasions += o.evasions;
+        self.feints += o.feints;
         self.knockdowns += o.knockdowns;
     }
 }
@@ -182,6 +185,11 @@ impl Stats {
     /// The VH was knocked down.
     pub fn knocked_down(&mut self, round: u32) {
         self.card(round).vh.knockdowns += 1;
+    }
+
+    /// The VH feinted.
+    pub fn feinted(&mut self, round: u32) {
+        self.card(round).vh.feints += 1;
     }
 
     /// The VH evaded a punch.
