@@ -3,7 +3,7 @@
 
 #[test]
 fn short_soak_holds_every_invariant() {
-    let r = shisen::tools::soak::soak(0.5, 7, (false, None), |_| true);
+    let r = shisen::tools::soak::soak(0.5, 7, Default::default(), |_| true);
     println!(
         "soak 30 s: {} events, {} VH punches, {} head-contact ticks, {} resets, worst excursion {:.2} deg, rss {:?} KiB",
         r.events, r.vh_punches, r.head_hit_ticks, r.resets, r.worst_limit_excess_deg, r.rss_kib
@@ -11,4 +11,25 @@ fn short_soak_holds_every_invariant() {
     assert!(r.passed(), "{:?}", r.failures);
     assert!(r.events > 20, "the opponent was active");
     assert_eq!(r.resets, 0, "no blow-ups with the shipped gains");
+}
+
+/// In rounds the soak is a bout: three minutes fought, a minute's rest in
+/// which the partner throws nothing, and the next round.
+#[test]
+fn a_soak_in_rounds_rests_between_them() {
+    use shisen::tools::soak::{SoakSetup, soak};
+    let setup = SoakSetup {
+        rounds: true,
+        ..Default::default()
+    };
+    // 3 min of round 1, the minute's rest, 20 s of round 2.
+    let r = soak(4.0 + 20.0 / 60.0, 7, setup, |_| true);
+    assert!(r.passed(), "{:?}", r.failures);
+    let fought: u32 = r.card.at_range.iter().sum();
+    assert_eq!(fought, 200_000, "ticks fought");
+    // The partner's punches all fell in the 200 s fought (about 0.8 a
+    // second), none in the rest.
+    let thrown = r.card.you.total().thrown;
+    // (Punching through the rest too would make it about 210.)
+    assert!((120..190).contains(&thrown), "{thrown} punches");
 }

@@ -248,6 +248,12 @@ pub enum Command {
         /// its range, output and defence. Default: the default scene's VH.
         #[arg(long, value_parser = parse_opponent)]
         opponent: Option<shisen::scene::opponent::Opponent>,
+        /// Fight in rounds, as a bout: three minutes with a minute's rest
+        /// between them (AIBA's format), as many as `--minutes` holds,
+        /// the partner resting too; rates are per minute of fighting.
+        /// Without it the sparring goes on without a pause.
+        #[arg(long)]
+        rounds: bool,
         /// Allow more than 600 simulated minutes.
         #[arg(long)]
         force: bool,

@@ -242,8 +242,18 @@ fn main() -> ExitCode {
             seed,
             balanced,
             opponent,
+            rounds,
             force,
-        }) => verdict(soak_cmd(minutes, seed, (balanced, opponent), force)),
+        }) => verdict(soak_cmd(
+            minutes,
+            seed,
+            shisen::tools::soak::SoakSetup {
+                balanced,
+                opponent,
+                rounds,
+            },
+            force,
+        )),
         Some(Command::Plot { trace, out, size }) => report(
             shisen::tools::output::Outputs::new()
                 .input(&trace)

@@ -426,7 +426,7 @@ pub fn progress(total: f64, unit: &str) -> indicatif::ProgressBar {
 pub fn soak_cmd(
     minutes: f64,
     seed: u64,
-    vh: (bool, Option<shisen::scene::opponent::Opponent>),
+    setup: shisen::tools::soak::SoakSetup,
     force: bool,
 ) -> Result<bool> {
     if !(minutes.is_finite() && minutes > 0.0) {
@@ -441,7 +441,7 @@ pub fn soak_cmd(
     let total = (minutes * 60.0) as u64;
     let bar = shisen::tools::parallel::bar(total, "s simulated (Ctrl-C stops)");
     let wall = std::time::Instant::now(); // reporting only
-    let r = shisen::tools::soak::soak(minutes, seed, vh, |f| {
+    let r = shisen::tools::soak::soak(minutes, seed, setup, |f| {
         bar.set_position((f * total as f64) as u64);
         !stop_requested()
     });
@@ -466,11 +466,16 @@ pub fn soak_cmd(
         "  effort: staggered {} times, fatigue {:.2} at the end; knocked down {} times ({} with no blow in the second before), up {} times",
         r.staggers.0, r.staggers.1, r.knockdowns.0, r.unprovoked, r.knockdowns.1
     );
-    let per_min = 60.0 / r.sim_time.max(1e-9);
+    // Per minute of fighting (the rests between rounds not counted).
+    let fought: u32 = r.card.at_range.iter().sum();
+    let per_min = 60.0 / (f64::from(fought) * shisen::sim::DT).max(1e-9);
     let shares = r.card.range_shares();
     println!(
         "  ring craft{}: the VH threw {:.1} punches a minute, landed {:.1}, took {:.1}; time at clinch/mid/long/out {:.0}/{:.0}/{:.0}/{:.0} %",
-        vh.1.map(|o| format!(" ({o})")).unwrap_or_default(),
+        setup
+            .opponent
+            .map(|o| format!(" ({o})"))
+            .unwrap_or_default(),
         f64::from(r.card.vh.total().thrown) * per_min,
         f64::from(r.card.vh.total().landed) * per_min,
         f64::from(r.card.you.total().landed) * per_min,

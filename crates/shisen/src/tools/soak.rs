@@ -10,6 +10,7 @@ use crate::physics::body::{HARD_STOP_MARGIN_DEG, Seg};
 use crate::scene::LoadedScene;
 use crate::scene::opponent::Opponent;
 use crate::sim::blows::Fighter;
+use crate::sim::bout::BoutParams;
 use crate::sim::timeline::{Action, Event, Hand, Part, PunchTarget};
 use crate::sim::{DT, Sample, Sim};
 use shisen_face::tables::Emotion;
@@ -293,17 +294,36 @@ const PROVOKED: f64 = 1.0;
 /// and closes it (10-hour soak, seed 11: widest 5.0 mm once).
 const MAX_JOINT_GAP_MM: f64 = 10.0;
 
+/// How a soak is fought.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SoakSetup {
+    /// The VH's whole body in the physics (`vh.body.pelvis: Balanced`).
+    pub balanced: bool,
+    /// The VH as this level and style (its range, output and defence);
+    /// `None`: the default scene's VH.
+    pub opponent: Option<Opponent>,
+    /// In rounds, as a bout is fought ([`BoutParams`]' default: three
+    /// minutes, a minute's rest), as many as the soak's length holds; the
+    /// partner rests too. Otherwise open sparring without a pause.
+    pub rounds: bool,
+}
+
 /// Spar for `minutes` of simulated time against a seeded random opponent,
-/// on the default scene's VH (as `opponent`, a level and style, if given:
-/// its range, output and defence), checking invariants every tick. `progress`
-/// is called about once per simulated second with the fraction done; it
-/// returns false to stop the soak there (the report covers what ran).
+/// on the default scene's VH as `setup` says, checking invariants every
+/// tick. `progress` is called about once per simulated second with the
+/// fraction done; it returns false to stop the soak there (the report
+/// covers what ran).
 pub fn soak(
     minutes: f64,
     seed: u64,
-    (balanced, opponent): (bool, Option<Opponent>),
+    setup: SoakSetup,
     mut progress: impl FnMut(f64) -> bool,
 ) -> SoakReport {
+    let SoakSetup {
+        balanced,
+        opponent,
+        rounds,
+    } = setup;
     let mut loaded = LoadedScene::default_scene();
     loaded.scene.seed = seed;
     loaded.scene.vh.opponent = opponent;
@@ -313,8 +333,16 @@ pub fn soak(
     loaded.scene.timeline.clear();
     loaded.scene.expect.clear();
     // Open sparring: no rounds (after the default's three the VH would
-    // stand in its corner for the rest of the soak).
-    loaded.scene.bout = None;
+    // stand in its corner for the rest of the soak); or as many rounds as
+    // the soak holds.
+    loaded.scene.bout = rounds.then(|| {
+        let b = BoutParams::default();
+        let n = (minutes * 60.0 / (b.round + b.rest)).ceil().max(1.0);
+        BoutParams {
+            rounds: n as u32,
+            ..b
+        }
+    });
     let mut sim = loaded.sim();
     let mut bot = SparringBot::new(seed, BotRates::default());
     let ticks = (minutes * 60.0 / DT).round() as u64;
@@ -324,7 +352,10 @@ pub fn soak(
     let mut was_staggered = false;
     let mut last_blow = f64::NEG_INFINITY;
     for i in 0..ticks {
-        bot.step(&mut sim);
+        // The partner rests between rounds.
+        if sim.phase(sim.time()).is_none_or(|(p, _)| p.fighting()) {
+            bot.step(&mut sim);
+        }
         let down_before = sim.balance.knockdowns;
         let s = sim.step().clone();
         if s.blows.iter().any(|b| b.by == Fighter::Opponent) {
