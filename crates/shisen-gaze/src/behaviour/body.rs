@@ -153,7 +153,8 @@ impl BodyPlan {
     /// Footwork: step to hold the fighting range to the opponent's seen
     /// head (horizontal distance from the waist joint), when it will be off
     /// by more than the tolerance by the time a step is taken (the
-    /// opponent's approach extrapolated) and no step is under way.
+    /// opponent's approach extrapolated, as much as `approach_read`
+    /// says) and no step is under way.
     pub fn keep_range(&mut self, p: &BehaviourParams, head: Option<&Seen>, t: f64) {
         if !p.footwork || self.step.as_ref().is_some_and(|s| !s.done(t)) {
             return;
@@ -170,7 +171,7 @@ impl BodyPlan {
         // Where the range will be once a step decided now has been taken,
         // at the opponent's present closing speed.
         let opening = head.velocity.dot(to / range);
-        let off = range - p.range + opening * (p.guard_reaction + p.step_time);
+        let off = range - p.range + p.approach_read * opening * (p.guard_reaction + p.step_time);
         // Turn to face the opponent as it circles (the feet step round).
         let bearing = to.x.atan2(to.z);
         let facing = at(&self.turn, t).x;
@@ -474,5 +475,16 @@ mod tests {
         // No second step while one is under way.
         plan.keep_range(&p, Some(&head(0.5, -0.4)), 0.1);
         assert_eq!(plan.steps, 1);
+        // A novice's feet answer where the opponent is, not where it is
+        // going: the same approach takes no step yet.
+        let novice = BehaviourParams {
+            approach_read: 0.0,
+            ..p.clone()
+        };
+        let mut plan = BodyPlan::default();
+        plan.keep_range(&novice, Some(&head(p.range - 0.05, -0.4)), 0.0);
+        assert_eq!(plan.steps, 0, "not yet out of range");
+        plan.keep_range(&novice, Some(&head(p.range - 0.2, -0.4)), 0.0);
+        assert_eq!(plan.steps, 1, "out of range now");
     }
 }

@@ -106,6 +106,17 @@ pub struct BehaviourParams {
     /// Default 0.1.
     #[schemars(range(min = 0.0, max = 1.0))]
     pub range_tolerance: f64,
+    /// How much of the opponent's approach the footwork reads ahead, 0-1:
+    /// the range it holds is judged where the opponent's closing speed
+    /// will have brought it once a step decided now is taken (1), or
+    /// where the opponent is now (0), so that a step in catches it before
+    /// it steps back. Default 1. Experts read a body's movement early,
+    /// novices only once it has happened (Rosalie & Mueller 2013, Q. J.
+    /// Exp. Psychol. 66:1951); the levels set 0 (novice), 0.5 (amateur)
+    /// and 1 (pro), our amounts.
+    #[serde(default = "one")]
+    #[schemars(range(min = 0.0, max = 1.0))]
+    pub approach_read: f64,
     /// Longest footwork step of the pelvis, m, 0-1 (a long stride).
     /// Default 0.3.
     #[schemars(range(min = 0.0, max = 1.0))]
@@ -168,6 +179,10 @@ pub struct BehaviourParams {
     pub guard_drop: f64,
 }
 
+fn one() -> f64 {
+    1.0
+}
+
 fn default_max_lunge() -> f64 {
     0.3
 }
@@ -200,6 +215,7 @@ impl Default for BehaviourParams {
             footwork: true,
             range: 0.92,
             range_tolerance: 0.1,
+            approach_read: 1.0,
             max_step: 0.3,
             turn_tolerance_deg: 15.0,
             circle_after: None,

@@ -143,6 +143,7 @@ impl Opponent {
         b.combination = l.combination;
         b.feint = l.feint;
         pers.anticipation = l.anticipation;
+        b.approach_read = l.approach_read;
         pers.a_face = l.a_face;
         // Where each style fights (behaviour/range.rs): an out-fighter
         // just out of range, stepping in to punch and out again; a boxer
@@ -198,6 +199,8 @@ struct LevelValues {
     feint: f64,
     /// Share of body cues acted on before the glove flies.
     anticipation: f64,
+    /// How much of the opponent's approach the footwork reads ahead.
+    approach_read: f64,
     /// The pull of the opponent's face, the visual pivot: above the
     /// guard's (3) the eyes stay on it while the gloves are watched in
     /// the periphery; below a glove's saliency they chase the gloves.
@@ -223,6 +226,7 @@ impl Level {
                 combination: 0.15,
                 feint: 0.0,
                 anticipation: 0.0,
+                approach_read: 0.0,
                 a_face: 0.5,
             },
             Level::Amateur => LevelValues {
@@ -237,6 +241,7 @@ impl Level {
                 combination: 0.45,
                 feint: 0.1,
                 anticipation: 0.5,
+                approach_read: 0.5,
                 a_face: 1.5,
             },
             Level::Pro => LevelValues {
@@ -251,6 +256,7 @@ impl Level {
                 combination: 0.6,
                 feint: 0.2,
                 anticipation: 0.85,
+                approach_read: 1.0,
                 a_face: 4.0,
             },
         }
