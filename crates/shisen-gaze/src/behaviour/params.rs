@@ -111,9 +111,10 @@ pub struct BehaviourParams {
     /// will have brought it once a step decided now is taken (1), or
     /// where the opponent is now (0), so that a step in catches it before
     /// it steps back. Default 1. Experts read a body's movement early,
-    /// novices only once it has happened (Rosalie & Mueller 2013, Q. J.
-    /// Exp. Psychol. 66:1951); the levels set 0 (novice), 0.5 (amateur)
-    /// and 1 (pro), our amounts.
+    /// near-experts once the attack has started (an approach is its
+    /// start), novices only once it has happened (Rosalie & Mueller 2013,
+    /// Q. J. Exp. Psychol. 66:1951); the levels set 0 (novice) and 1
+    /// (amateur, pro).
     #[serde(default = "one")]
     #[schemars(range(min = 0.0, max = 1.0))]
     pub approach_read: f64,

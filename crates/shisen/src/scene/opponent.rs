@@ -241,7 +241,7 @@ impl Level {
                 combination: 0.45,
                 feint: 0.1,
                 anticipation: 0.5,
-                approach_read: 0.5,
+                approach_read: 1.0,
                 a_face: 1.5,
             },
             Level::Pro => LevelValues {
