@@ -4,7 +4,45 @@
 //! them under Xvfb: `xvfb-run -a cargo test --test app_smoke -- --ignored
 //! --test-threads=1`. Run that way, a missing display is a failure.
 
-use std::process::Command;
+use std::process::{Child, Command};
+
+/// The app under test, killed if the test ends early (a failed assertion
+/// must not leave its window open for the next test's `xdotool search`).
+struct App(Child);
+
+impl Drop for App {
+    fn drop(&mut self) {
+        if matches!(self.0.try_wait(), Ok(None)) {
+            let _ = self.0.kill();
+            let _ = self.0.wait();
+        }
+    }
+}
+
+impl App {
+    /// Wait up to `secs` for this process's window; its X id.
+    fn window(&self, secs: u64) -> String {
+        let started = std::time::Instant::now();
+        loop {
+            let out = Command::new("xdotool")
+                .args([
+                    "search",
+                    "--pid",
+                    &self.0.id().to_string(),
+                    "--name",
+                    "shisen",
+                ])
+                .output()
+                .expect("xdotool");
+            let ids = String::from_utf8_lossy(&out.stdout);
+            if let Some(id) = ids.split_whitespace().next() {
+                return id.to_string();
+            }
+            assert!(started.elapsed().as_secs() < secs, "window never appeared");
+            std::thread::sleep(std::time::Duration::from_millis(100));
+        }
+    }
+}
 
 fn assert_display() {
     let has_display = ["DISPLAY", "WAYLAND_DISPLAY"]
@@ -57,26 +95,14 @@ fn mouse_and_keyboard_drive_your_avatar() {
     let xdo = |args: &[&str]| {
         let _ = Command::new("xdotool").args(args).status();
     };
-    let child = Command::new(env!("CARGO_BIN_EXE_shisen"))
+    let mut app = App(Command::new(env!("CARGO_BIN_EXE_shisen"))
         .args(["--exit-after", "9"])
         .env("RUST_LOG", "shisen=debug")
         .stderr(std::process::Stdio::piped())
         .spawn()
-        .expect("start shisen");
+        .expect("start shisen"));
     // Wait for the window, then act on it.
-    let mut found = false;
-    for _ in 0..50 {
-        std::thread::sleep(std::time::Duration::from_millis(100));
-        let out = Command::new("xdotool")
-            .args(["search", "--name", "shisen"])
-            .output()
-            .expect("xdotool");
-        if !out.stdout.is_empty() {
-            found = true;
-            break;
-        }
-    }
-    assert!(found, "window never appeared");
+    let window = app.window(10);
     std::thread::sleep(std::time::Duration::from_millis(1500));
     for x in (450..=650).step_by(25) {
         xdo(&["mousemove", &x.to_string(), "350"]);
@@ -84,13 +110,15 @@ fn mouse_and_keyboard_drive_your_avatar() {
     }
     xdo(&["click", "1"]);
     std::thread::sleep(std::time::Duration::from_millis(300));
-    xdo(&["search", "--name", "shisen", "windowfocus"]);
+    xdo(&["windowfocus", &window]);
     xdo(&["keydown", "a"]);
     std::thread::sleep(std::time::Duration::from_millis(1200));
     xdo(&["keyup", "a"]);
-    let out = child.wait_with_output().expect("shisen runs");
-    assert!(out.status.success());
-    let log = String::from_utf8_lossy(&out.stderr);
+    let mut stderr = app.0.stderr.take().expect("piped");
+    let mut log = String::new();
+    std::io::Read::read_to_string(&mut stderr, &mut log).expect("read the log");
+    let status = app.0.wait().expect("shisen runs");
+    assert!(status.success(), "exit {status:?}:\n{log}");
     for want in ["part: LeftGlove", "Punch { hand: Left", "part: Head"] {
         assert!(log.contains(want), "no {want:?} event in the log:\n{log}");
     }
@@ -113,7 +141,7 @@ fn a_short_bout_through_the_bell_counts_punches_and_quits_from_the_menu() {
     let dir = std::env::temp_dir().join(format!("shisen-bout-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let (stats, log) = (dir.join("stats.json"), dir.join("log.txt"));
-    let mut child = Command::new(env!("CARGO_BIN_EXE_shisen"))
+    let mut app = App(Command::new(env!("CARGO_BIN_EXE_shisen"))
         .args([
             "--opponent",
             "novice",
@@ -127,35 +155,25 @@ fn a_short_bout_through_the_bell_counts_punches_and_quits_from_the_menu() {
         .env("RUST_LOG", "shisen=info")
         .stderr(std::fs::File::create(&log).unwrap())
         .spawn()
-        .expect("start shisen");
+        .expect("start shisen"));
     let xdo = |args: &[&str]| {
         let _ = Command::new("xdotool").args(args).status();
     };
     let started = Instant::now();
-    while Command::new("xdotool")
-        .args(["search", "--name", "shisen"])
-        .output()
-        .expect("xdotool")
-        .stdout
-        .is_empty()
-    {
-        assert!(
-            started.elapsed() < Duration::from_secs(20),
-            "window never appeared"
-        );
-        std::thread::sleep(Duration::from_millis(100));
-    }
+    let window = app.window(20);
     std::thread::sleep(Duration::from_millis(1500));
-    xdo(&["search", "--name", "shisen", "windowfocus"]);
+    xdo(&["windowfocus", &window]);
     xdo(&["mousemove", "640", "330"]);
-    let rang = |n: u32| {
-        std::fs::read_to_string(&log)
-            .unwrap_or_default()
-            .contains(&format!("bell=End({n})"))
-    };
     let read_stats = || -> serde_json::Value {
         serde_json::from_str(&std::fs::read_to_string(&stats).expect("stats written"))
             .expect("stats are JSON")
+    };
+    // The statistics the app wrote at the bell that ended round `n` (the
+    // file names its last bell; it is written whole, never half).
+    let rang = |n: u32| {
+        let text = std::fs::read_to_string(&stats).ok()?;
+        let v: serde_json::Value = serde_json::from_str(&text).expect("stats are JSON");
+        (v["bell"]["end"].as_u64()? == u64::from(n)).then_some(v)
     };
     let thrown = |v: &serde_json::Value, who: &str| {
         v[who]["jabs"]["thrown"].as_u64().unwrap() + v[who]["power"]["thrown"].as_u64().unwrap()
@@ -167,7 +185,7 @@ fn a_short_bout_through_the_bell_counts_punches_and_quits_from_the_menu() {
     // (the simulation may run slower than the wall clock in a debug build).
     let mut after_round_1 = None;
     let mut keys = ["e", "f", "j", "q"].iter().cycle();
-    while !rang(2) {
+    while rang(2).is_none() {
         assert!(
             started.elapsed() < Duration::from_secs(200),
             "the bell never ended round 2; log:\n{}",
@@ -175,8 +193,8 @@ fn a_short_bout_through_the_bell_counts_punches_and_quits_from_the_menu() {
         );
         xdo(&["key", keys.next().unwrap()]);
         std::thread::sleep(Duration::from_millis(350));
-        if after_round_1.is_none() && rang(1) {
-            after_round_1 = Some(read_stats());
+        if after_round_1.is_none() {
+            after_round_1 = rang(1);
         }
     }
     let round_1 = after_round_1.expect("the bell ended round 1 before round 2");
@@ -206,7 +224,7 @@ fn a_short_bout_through_the_bell_counts_punches_and_quits_from_the_menu() {
     xdo(&["key", "q"]);
     let quit = Instant::now();
     let status = loop {
-        if let Some(s) = child.try_wait().unwrap() {
+        if let Some(s) = app.0.try_wait().unwrap() {
             break s;
         }
         assert!(

@@ -319,17 +319,19 @@ impl ShisenApp {
         self.report_shot = None;
     }
 
-    /// Each new bell: logged, and the statistics written (`--stats`), so
-    /// what a round came to is on disk when the next starts.
+    /// Each new bell: the statistics written (`--stats`), then the bell
+    /// logged, so what a round came to is on disk when the log says it
+    /// ended (a script that watches the log reads it whole).
     fn announce_bells(&mut self) {
-        let bells = &self.session.log.bells;
-        if bells.len() < self.bells {
+        if self.session.log.bells.len() < self.bells {
             // A restart: a new bout.
             self.bells = 0;
         }
-        if bells.len() == self.bells {
+        if self.session.log.bells.len() == self.bells {
             return;
         }
+        self.write_stats();
+        let bells = &self.session.log.bells;
         for (t, b) in &bells[self.bells..] {
             tracing::info!(t, bell = ?b, "bell");
             // The round's report for the rest after it; the next round
@@ -351,16 +353,20 @@ impl ShisenApp {
             }
         }
         self.bells = bells.len();
-        self.write_stats();
     }
 
     /// `--stats FILE`: the bout's statistics, per round and in total (JSON).
     fn write_stats(&self) {
         let Some(path) = &self.opts.stats else { return };
         let stats = &self.session.sim.stats;
+        let bell = self.session.log.bells.last().map(|(t, b)| match b {
+            shisen::sim::bout::Bell::Start(n) => serde_json::json!({"t": t, "start": n}),
+            shisen::sim::bout::Bell::End(n) => serde_json::json!({"t": t, "end": n}),
+        });
         let json = serde_json::json!({
             "opponent": self.session.opponent.map(|o| o.to_string()),
             "time": self.session.sim.time(),
+            "bell": bell,
             "rounds": stats.rounds,
             "total": stats.total(),
         });
