@@ -83,7 +83,7 @@ impl MeshKey {
 
 /// The key light's direction of travel: from in front of the VH, above
 /// and to its left (your right), the light that models its face.
-pub const KEY_DIR: Vec3 = Vec3::new(-0.5, -0.8, -1.4);
+pub const KEY_DIR: Vec3 = Vec3::new(-0.9, -1.0, -1.1);
 /// The fill light's direction of travel, from the other side.
 pub const FILL_DIR: Vec3 = Vec3::new(0.9, -0.15, -1.0);
 /// The top light: the lamps over the ring, from above, behind you and to
@@ -93,6 +93,13 @@ pub const FILL_DIR: Vec3 = Vec3::new(0.9, -0.15, -1.0);
 pub const TOP_DIR: Vec3 = Vec3::new(-0.45, -1.0, -0.75);
 /// The top light's strength, against the key's 0.85 and the fill's 0.35.
 pub const TOP_LIGHT: f32 = 0.35;
+/// The rim light's direction of travel: from behind the VH, above and to
+/// its right, toward you (the third lamp of a portrait's three-point
+/// rig: it draws the edge of the cheek, jaw and ear against the dark hall).
+/// Only skin and hair take it, at grazing angles.
+pub const RIM_DIR: Vec3 = Vec3::new(0.6, -0.7, 1.0);
+/// The rim light's strength.
+pub const RIM_LIGHT: f32 = 0.55;
 
 /// The plain material's light on a surface of normal `n` with nothing
 /// shadowing it (ambient 0.22, key 0.85, fill 0.35, top): what the
@@ -117,7 +124,10 @@ fn lambert(n: Vec3, dir: Vec3) -> f32 {
 pub enum Material {
     /// Lit with the instance colour.
     Plain = 0,
-    /// Eyeball: sclera, iris and pupil around the local +Z pole.
+    /// Eyeball: sclera, iris and pupil around the local +Z pole. Its
+    /// colour is not a colour: red and green carry the upper lid's margin
+    /// height in the eyeball's unit frame, at its middle and its corners
+    /// (`face_parts::lid_shadows`), for the lid's shadow.
     Eye = 1,
     /// Flat ground lit from above (the ring's canvas): the instance colour
     /// at one light, nothing computed per pixel.

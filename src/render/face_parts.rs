@@ -61,9 +61,36 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
             MOUTH,
         )
     };
+    let mut corridors = Vec::new();
+    // The buccal corridors: the dark space between the back teeth and the
+    // cheeks, which a wide mouth shows at its corners (and a closed one's seam at
+    // its ends). A shaded blob
+    // behind each deformed corner, short of the cheek's skin beside it,
+    // hides what stands inside the head there.
+    let ends =
+        |rim: &[u32]| [rim[0], rim[rim.len() - 1]].map(|i| Vec3::from_array(face[i as usize].pos));
+    let (u, lo) = (ends(&mesh.rims.upper_lip), ends(&mesh.rims.lower_lip));
+    for (a, b) in [(u[0], lo[0]), (u[1], lo[1])]
+        .into_iter()
+        .chain([(u[0], lo[1]), (u[1], lo[0])])
+        .filter(|(a, b)| a.x.signum() == b.x.signum() && a.distance(*b) < 0.01)
+    {
+        let corner = (a + b) / 2.0;
+        let centre = corner + Vec3::new(-corner.x.signum() * 0.004, 0.0, -CORRIDOR_HALF[2]);
+        corridors.push(ellipsoid(
+            centre,
+            Vec3::new(
+                CORRIDOR_HALF[0],
+                CORRIDOR_HALF[1] + gap * 0.3,
+                CORRIDOR_HALF[2],
+            ),
+            MOUTH,
+        ));
+    }
     let lips_back = upper.z.min(lower.z) - 0.006;
     if gap < TEETH_SHOW_GAP {
-        return vec![cavity(lips_back, 1.0, 0.026)];
+        corridors.push(cavity(lips_back, 1.0, 0.026));
+        return corridors;
     }
     // Incisal edges at rest: the upper one a little below the upper lip's
     // rest edge and behind it; the lower one overlapped by the upper
@@ -96,7 +123,8 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     // ones, which the jaw carries back as it opens (about 6 mm behind the
     // lower incisors round their smaller arch).
     let front = (upper_edge.z - CAVITY_BEHIND_TEETH).min(lower_edge.z - 0.007) - push;
-    let mut draws = vec![cavity(lips_back.min(front), 1.3, 0.045)];
+    let mut draws = corridors;
+    draws.push(cavity(lips_back.min(front), 1.3, 0.045));
     let shaded = |c: [f32; 3], shade: f32| [c[0] * shade, c[1] * shade, c[2] * shade, 1.0];
     // The tongue lies on the mouth's floor behind the lower incisors, its
     // back under the palate, and drops with the jaw; the part behind the
@@ -270,6 +298,10 @@ const OVERJET: f32 = 0.0025;
 /// of the teeth (the lips and the skin around them), m.
 const LIP_REACH: f32 = 0.015;
 
+/// Half sizes of the dark blob in each corner of an open mouth (across,
+/// up, deep), m (our choice: inside the corner, behind the premolars).
+const CORRIDOR_HALF: [f32; 3] = [0.006, 0.004, 0.007];
+
 /// Lips further apart than this show the teeth, m.
 const TEETH_SHOW_GAP: f32 = 0.003;
 
@@ -309,6 +341,43 @@ pub(super) fn caruncles(
             }
         })
         .collect()
+}
+
+/// The upper lids' shadow on the eyes: each eye's draw (material `Eye`)
+/// is given, in its colour's red and green, the height of its upper lid's
+/// margin in the eyeball's own unit frame (local y, +1 at the top) at the
+/// margin's middle and at its ends (the corners), so the shader can shade
+/// the band of eyeball just under the lid, which its lashes and the lid's
+/// rim hide from the light above. The lid rides the eye's pitch and the
+/// expression (AU 5 lifts it, a blink lowers it), and the shadow with it.
+/// The rim nearest each eye is its own.
+pub(super) fn lid_shadows(
+    rims: &shisen_face::mesh::Rims,
+    face: &[Vertex],
+    face_frame: Mat4,
+    draws: &mut [Draw],
+) {
+    for d in draws.iter_mut().filter(|d| d.material == Material::Eye) {
+        let centre = d.model.transform_point3(Vec3::ZERO);
+        let to_local = d.model.inverse() * face_frame;
+        let local = |i: u32| to_local.transform_point3(Vec3::from_array(face[i as usize].pos));
+        let nearest = rims
+            .upper_lid
+            .iter()
+            .filter(|r| r.len() >= 3)
+            .min_by(|a, b| {
+                let dist = |r: &[u32]| {
+                    face_frame
+                        .transform_point3(Vec3::from_array(face[r[r.len() / 2] as usize].pos))
+                        .distance(centre)
+                };
+                dist(a).total_cmp(&dist(b))
+            });
+        let Some(rim) = nearest else { continue };
+        let mid = local(rim[rim.len() / 2]).y;
+        let ends = (local(rim[0]).y + local(rim[rim.len() - 1]).y) / 2.0;
+        d.color = [mid, ends, 0.0, 1.0];
+    }
 }
 
 /// Half sizes of a caruncle (across, up, deep), m: about 2 by 3 mm of it

@@ -15,7 +15,7 @@ use shisen_gaze::util::math::{dir_from_yaw_pitch, yaw_pitch_of};
 use super::body::{BodyMesh, BodyStyle, LEVELS, Piece, Pose, SKIN, avatar_pose, vh_pose};
 use super::camera::{Camera, View};
 use super::draw::{Draw, Label, LineVertex, Material, MeshKey, TOP_DIR};
-use super::face_parts::{caruncles, hair_shell, lashes, mouth};
+use super::face_parts::{caruncles, hair_shell, lashes, lid_shadows, mouth};
 use super::geometry::Vertex;
 
 /// Overlay toggles.
@@ -265,6 +265,7 @@ impl Frame {
         draws.extend(mouth(sim, &face, face_frame));
         let lashes = lashes(&sim.model().face.mesh.rims, &face);
         draws.extend(caruncles(&sim.model().face.mesh.rims, &face, face_frame));
+        lid_shadows(&sim.model().face.mesh.rims, &face, face_frame, &mut draws);
         // Ears, rooted in the head just in front of where the face mesh's
         // ear bumps stand (the lobe landmark), the right one mirrored.
         let lobe = sim.model().face.mesh.landmarks.ear_lobe;

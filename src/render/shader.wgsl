@@ -22,6 +22,8 @@ struct Globals {
     top_dir: vec4<f32>,
     // x: the top light's strength; y: shadows on; z: normal offset, m.
     shadow: vec4<f32>,
+    // The rim light's direction of travel (xyz) and strength (w).
+    rim_dir: vec4<f32>,
 };
 
 struct Instance {
@@ -248,7 +250,7 @@ fn eye_colour(local: vec3<f32>) -> vec3<f32> {
     // corners, where it curves away under the lids' shade and shows its
     // vessels (our choice; a uniform white reads as a painted disc).
     let t = clamp((IRIS_COS - c) / (IRIS_COS - 0.45), 0.0, 1.0);
-    var white = mix(vec3<f32>(0.82, 0.79, 0.74), vec3<f32>(0.66, 0.56, 0.53), t * t);
+    var white = mix(vec3<f32>(0.78, 0.75, 0.70), vec3<f32>(0.70, 0.57, 0.54), t * t);
     // Fine vessels, more toward the corners: two crossing wavy families.
     let a = atan2(d.y, d.x);
     let w1 = max(sin(a * 11.0 + c * 23.0) * sin(a * 7.0 - c * 31.0), 0.0);
@@ -258,24 +260,34 @@ fn eye_colour(local: vec3<f32>) -> vec3<f32> {
     return white;
 }
 
-// Skin: light wraps past the terminator (scattered under the surface)
-// and reddens there; a weak, broad sheen instead of a plastic highlight;
-// a faint rim where the skin turns away. `shade` darkens the diffuse part
+// Skin (an approximation of pre-integrated skin shading, Penner &
+// Borshukov 2011, GPU Pro 2): light scattered under the surface wraps past
+// the terminator, red farthest, so the shadow's edge is soft and warm;
+// the sky's light from above and a darker bounce from below (the nose's,
+// brows' and chin's undersides take less, which shapes them); two
+// specular lobes of an oily film, weak and broad over a sharper one
+// (Weyrich et al. 2006: skin's is a two-lobe, Fresnel-weighted reflection);
+// and the rim light at grazing angles. `shade` darkens the diffuse part
 // (wrinkles' furrows).
+const SKIN_WRAP: vec3<f32> = vec3<f32>(0.55, 0.30, 0.24);
 fn skin(base: vec3<f32>, n: vec3<f32>, view_dir: vec3<f32>, shade: f32, top: f32) -> vec3<f32> {
     let key = normalize(-g.key_dir.xyz);
     let fill = normalize(-g.fill_dir.xyz);
     let h = normalize(key + view_dir);
-    let wrap = 0.45;
-    let kd = max((dot(n, key) + wrap) / (1.0 + wrap), 0.0);
-    let fd = max((dot(n, fill) + wrap) / (1.0 + wrap), 0.0);
-    let scatter = vec3<f32>(1.0, 0.55, 0.45) * 0.18 * kd * (1.0 - kd) * 4.0;
-    let r = 1.0 - max(dot(n, view_dir), 0.0);
-    let rim = r * r * r * 0.12;
-    let c2 = max(dot(n, h), 0.0) * max(dot(n, h), 0.0);
-    let c4 = c2 * c2;
-    let sheen = 0.06 * c4 * c4 * c4;
-    let lit = (base * (0.20 + 0.80 * kd + 0.30 * fd + top) + base * scatter) * shade + vec3<f32>(sheen + rim * 0.5);
+    let kd = max((vec3<f32>(dot(n, key)) + SKIN_WRAP) / (1.0 + SKIN_WRAP), vec3<f32>(0.0));
+    let fd = max((vec3<f32>(dot(n, fill)) + SKIN_WRAP) / (1.0 + SKIN_WRAP), vec3<f32>(0.0));
+    let sky = 0.05 + 0.11 * (0.5 + 0.5 * n.y);
+    let nv = max(dot(n, view_dir), 0.0);
+    let r = 1.0 - nv;
+    let fresnel = 0.04 + 0.96 * pow4(r) * r;
+    let c = max(dot(n, h), 0.0);
+    let c8 = pow4(c) * pow4(c);
+    let c32 = pow4(c8);
+    let lobes = (0.06 * c8 + 0.08 * c32) * (0.4 + 6.0 * fresnel) * max(dot(n, key), 0.0);
+    let rim_l = normalize(-g.rim_dir.xyz);
+    let rim = g.rim_dir.w * max(dot(n, rim_l), 0.0) * r * r;
+    let lit = base * (sky + 0.92 * kd + 0.16 * fd + top) * shade
+        + vec3<f32>(lobes) + vec3<f32>(1.0, 0.93, 0.85) * rim;
     return lit;
 }
 
@@ -374,6 +386,33 @@ fn fold_furrow_mean(fold: f32) -> f32 {
     return mix(FURROW_WAVE * 0.375, FURROW_CREASE * 0.166, fold);
 }
 
+// Stubble: the cut hairs of a shaved beard, dark dots at the hairs'
+// spacing (beard density about 60 hairs per cm2 on the chin and upper
+// lip: Tolgyesi et al. 1983, J. Soc. Cosmet. Chem. 34:361, so 1.3 mm
+// apart), each the hair's dark root seen through the skin (about 0.3 mm
+// across). Where the dots are finer than a pixel they fade into their
+// mean cover.
+const STUBBLE_CELL: f32 = 0.0013;
+const STUBBLE_R: f32 = 0.12;
+fn stubble_dots(q: vec2<f32>) -> f32 {
+    let u = q / STUBBLE_CELL;
+    let fw = max(fwidth(u.x), fwidth(u.y));
+    let c = floor(u);
+    let jitter = vec2<f32>(hash2(c), hash2(c + vec2<f32>(17.0, 3.0))) - 0.5;
+    let f = fract(u) - 0.5 - 0.7 * jitter;
+    let r = length(f) / (0.7 + 0.6 * hash2(c + vec2<f32>(5.0, 11.0)));
+    let hair = 1.0 - smoothstep(STUBBLE_R - fw, STUBBLE_R + fw, r);
+    let mean = 3.1415927 * STUBBLE_R * STUBBLE_R;
+    return mix(hair, mean, clamp(2.0 * fw - 0.5, 0.0, 1.0));
+}
+
+// The spacing of the lips' vertical lines, m (about 1 mm; our reading).
+const LIP_LINE: f32 = 0.0011;
+
+// The conjunctiva's colour where it shows in an eye's corner (our
+// reading of photographs: the sclera's pinker, duller edge).
+const CONJUNCTIVA: vec3<f32> = vec3<f32>(0.74, 0.52, 0.50);
+
 // The face: skin with its painted borders and expression wrinkles.
 @fragment
 fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
@@ -387,11 +426,26 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
         return vec4<f32>(g.face_regions[3].rgb, 1.0);
     }
     let view_dir = normalize(g.camera.xyz - v.world);
+    // Elsewhere a back face is a lid's inside, seen in an eye's corner
+    // past the eyeball's curve: the conjunctiva, moist and pink, in the
+    // socket's shade (lit softly, as the sclera beside it).
+    if (!front) {
+        let key = normalize(-g.key_dir.xyz);
+        let lit = 0.35 + 0.4 * max(dot(-normalize(v.normal), key) + 0.6, 0.0) / 1.6;
+        return vec4<f32>(CONJUNCTIVA * lit, 1.0);
+    }
     var n = normalize(v.normal);
     if (dot(n, view_dir) < 0.0) {
         n = -n;
     }
     var base = inst.color.rgb * v.color.rgb;
+    // The stubble's cut hairs (`v.color.a`, the beard's density), sampled
+    // in the plane the skin faces most, the face's front or the jaw's
+    // side, so the dots do not stretch.
+    let across = normalize((inst.model * vec4<f32>(1.0, 0.0, 0.0, 0.0)).xyz);
+    let side = smoothstep(0.45, 0.75, abs(dot(n, across)));
+    let dots = mix(stubble_dots(v.local.xy), stubble_dots(v.local.zy), side);
+    base = base * (1.0 - 0.6 * v.color.a * dots);
     // Painted borders (face/appearance.rs): each region covers
     // where its interpolated signed distance is positive, blended
     // over its soft border or one pixel, whichever is wider. The lips'
@@ -400,7 +454,32 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
     let inside = vec3<f32>(lips_inside(v.rest, v.local.z) / LIP_SOFT, v.paint.w - abs(v.paint.y), v.paint.z);
     let aa = max(fwidth(inside), vec3<f32>(1.0));
     let cover = smoothstep(-aa, aa, inside);
-    base = mix(base, g.face_regions[0].rgb, cover.x);
+    // The vermilion is not one pink: deeper and redder toward the mouth's
+    // line, where the lip turns in and its skin is thinnest, paler by its
+    // border (our reading of lip photographs), with the fine vertical
+    // lines of the lips' skin (sulci, about 1 mm apart) and a wet shine.
+    let lip_y = v.rest.y - g.lips[0].y;
+    let lip_h = select(g.lips[0].w, g.lips[0].z, lip_y > 0.0);
+    let to_border = clamp(abs(lip_y) / max(lip_h, 1e-4), 0.0, 1.0);
+    let lip_colour = g.face_regions[0].rgb * mix(vec3<f32>(0.78, 0.70, 0.72), vec3<f32>(1.08, 1.10, 1.08), to_border);
+    base = mix(base, lip_colour, cover.x);
+    // A mouth stretched wide (a smile, fear's AU 20) pulls the skin beside
+    // its corners into the opening, where it turns to face the mouth's
+    // middle: there it is the corner's moist, shaded inner lip, not the
+    // cheek's skin.
+    let lip_across = normalize((inst.model * vec4<f32>(1.0, 0.0, 0.0, 0.0)).xyz);
+    let beside = length(vec2<f32>(max(abs(v.rest.x) - g.lips[0].x, 0.0), lip_y));
+    let turned_in = -dot(n, lip_across) * sign(v.rest.x);
+    let commissure = smoothstep(0.012, 0.004, beside) * smoothstep(0.25, 0.55, turned_in);
+    base = mix(base, g.face_regions[0].rgb * vec3<f32>(0.55, 0.40, 0.42), commissure);
+    // The lines wander and vary in depth, strongest mid-lip.
+    let sulci = v.rest.x / LIP_LINE
+        + 0.7 * value_noise(v.rest.y / 0.0025 + select(0.0, 31.0, lip_y > 0.0))
+        + 0.5 * value_noise(v.rest.x / 0.003);
+    let sulci_fade = clamp(1.0 - 2.0 * fwidth(sulci), 0.0, 1.0);
+    let depth = hash2(vec2<f32>(floor(sulci), select(1.0, 2.0, lip_y > 0.0)));
+    let sulcus = 0.14 * depth * (1.0 - to_border * to_border) * sin(6.2831853 * sulci);
+    n = normalize(n + lip_across * (cover.x * sulci_fade * sulcus));
     // Brows as hairs: strokes along the hairs' lie, rising steeply out of
     // the brow's head and lying flatter toward the tail (our reading of how
     // brow hairs grow), denser in the body, over a faint base.
@@ -461,7 +540,13 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
     let cell = select(0.0008, 0.0005, v.local.y > 0.02);
     n = select(n, pores(n, v.local.xy, ax, ay, cell), bare > 0.5);
     let top = SKIN_TOP * top_light(v.world, normalize(v.normal), 0.0);
-    return vec4<f32>(skin(base, n, view_dir, (1.0 - furrow) * tilt, top), 1.0);
+    // The lips' wet film: a sharper, brighter highlight than skin's, most
+    // on the fuller lower lip.
+    let key = normalize(-g.key_dir.xyz);
+    let c = max(dot(n, normalize(key + view_dir)), 0.0);
+    let c16 = pow4(pow4(c));
+    let wet = cover.x * select(0.10, 0.22, lip_y < 0.0) * c16 * c16;
+    return vec4<f32>(skin(base, n, view_dir, (1.0 - furrow) * tilt, top) + vec3<f32>(wet), 1.0);
 }
 
 // One entry point a material: a software rasteriser runs every
@@ -540,15 +625,29 @@ fn fs_eye(v: VOut) -> @location(0) vec4<f32> {
     if (dot(n, view_dir) < 0.0) {
         n = -n;
     }
-    let base = eye_colour(v.local);
+    // The upper lid's shadow: the lid's rim and lashes shade a band of
+    // eyeball under its margin (about 2.5 mm, a fifth of the eyeball's
+    // radius; our reading of portrait photographs), deepest at the margin.
+    // The margin's height runs from its middle to the corners as a
+    // parabola across the eye.
+    let across = clamp(d.x / 0.8, -1.0, 1.0);
+    let margin = mix(inst.color.x, inst.color.y, across * across);
+    let under = clamp((margin - d.y) / 0.22, 0.0, 1.0);
+    let lid_shade = 1.0 - 0.65 * (1.0 - under) * (1.0 - under);
+    let base = eye_colour(v.local) * lid_shade;
     let key = normalize(-g.key_dir.xyz);
     let fill = normalize(-g.fill_dir.xyz);
-    // Diffuse on the eyeball's own sphere, the highlights on the cornea.
-    let diffuse = key_fill_top(v.world, normalize(v.normal));
+    // Diffuse on the eyeball's own sphere, wrapped (the sclera is
+    // translucent: light scattered in it brightens the eye's corners,
+    // which face away from the lights), the highlights on the cornea.
+    let ne = normalize(v.normal);
+    let wrap = 0.6;
+    let diffuse = (0.85 * max(dot(ne, key) + wrap, 0.0) + 0.35 * max(dot(ne, fill) + wrap, 0.0))
+        / (1.0 + wrap) + top_light(v.world, ne, wrap);
     let c16 = pow4(pow4(max(dot(n, normalize(key + view_dir)), 0.0)));
     let c256 = pow4(pow4(c16));
     let cf64 = pow4(pow4(pow4(max(dot(n, normalize(fill + view_dir)), 0.0))));
-    let spec = 1.6 * c256 + 0.12 * c16 + 0.5 * cf64 * cf64;
+    let spec = (1.6 * c256 + 0.12 * c16 + 0.5 * cf64 * cf64) * lid_shade;
     return vec4<f32>(base * (0.22 + diffuse) + vec3<f32>(spec), 1.0);
 }
 

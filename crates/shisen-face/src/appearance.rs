@@ -36,6 +36,11 @@ pub struct FaceStyle {
     pub flush: [f32; 3],
     /// The inside of the mouth.
     pub inside: [f32; 3],
+    /// A shaved beard's shadow over the jaw, chin and upper lip (the
+    /// skin's colour through the stubble's dark roots).
+    pub stubble: [f32; 3],
+    /// The thin, darker skin under the eyes.
+    pub under_eye: [f32; 3],
 }
 
 impl Default for FaceStyle {
@@ -54,6 +59,8 @@ impl FaceStyle {
         lashes: [0.02, 0.015, 0.015],
         flush: [0.66, 0.30, 0.26],
         inside: [0.10, 0.015, 0.02],
+        stubble: [0.38, 0.29, 0.25],
+        under_eye: [0.44, 0.27, 0.24],
     };
 }
 
@@ -292,6 +299,48 @@ fn flush(p: Vec3, l: &Landmarks) -> f32 {
     0.35 * smoothstep(0.024, 0.0, d) * smoothstep(-0.03, 0.0, p.z - c.z)
 }
 
+/// How red the skin is over the nose's tip and wings (0..1): the nose is
+/// among the face's reddest parts, with the cheeks (Yamamoto et al. 2008,
+/// Skin Res. Technol. 14:26, a* by region).
+fn nose_red(p: Vec3, l: &Landmarks) -> f32 {
+    let tip = smoothstep(0.014, 0.0, p.distance(l.nose_tip));
+    let wing = l.nostril_wing;
+    let wing = smoothstep(0.009, 0.0, Vec3::new(p.x.abs(), p.y, p.z).distance(wing));
+    0.4 * tip.max(wing)
+}
+
+/// How much of the darker skin under an eye shows at the point (0..1): a
+/// crescent from the lower lid down to the lid-cheek junction, about
+/// 1.5 cm (the infraorbital hollow, where the skin is thin).
+fn under_eye(p: Vec3, l: &Landmarks) -> f32 {
+    let c = l.lower_lid_mid;
+    let across = (p.x.abs() - c.x.abs()) / 0.017;
+    let down = (c.y - p.y) / 0.016;
+    if down < -0.1 {
+        return 0.0;
+    }
+    let r = (across * across + (down - 0.35) * (down - 0.35) / 0.45).sqrt();
+    0.55 * smoothstep(1.0, 0.4, r) * smoothstep(-0.1, 0.15, down)
+}
+
+/// How much of a shaved beard's shadow shows at the point (0..1): over
+/// the upper lip below the nose, the chin and the jaw, up the lower cheek
+/// to a line from the nose's base to the sideburn, fading into the
+/// neck (our reading of the male beard's extent); the lips are painted
+/// over it.
+fn stubble(p: Vec3, l: &Landmarks) -> f32 {
+    let x = p.x.abs();
+    let (a, b) = (l.nostril_wing, l.ear_lobe);
+    let t = ((x - a.x) / (b.x - a.x)).clamp(0.0, 1.0);
+    // From just under the nose's base up to the sideburn at mid-ear.
+    let cheek_line = a.y + 0.002 + (b.y + 0.028 - a.y) * t;
+    let below = smoothstep(0.0, 0.008, cheek_line - p.y);
+    let neck = smoothstep(l.jaw_lower_edge.y - 0.035, l.jaw_lower_edge.y - 0.005, p.y);
+    // The groove under the nose and the corners of the mouth carry less.
+    let front = smoothstep(-0.04, -0.01, p.z - l.mouth_corner.z);
+    0.5 * below * neck * front
+}
+
 /// Each vertex's mean edge length (the mesh's local resolution), m.
 fn edge_length(mesh: &HeadMesh) -> Vec<f32> {
     let mut sum = vec![(0.0, 0u32); mesh.positions.len()];
@@ -313,7 +362,9 @@ fn edge_length(mesh: &HeadMesh) -> Vec<f32> {
 /// The painted rest mesh.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Paint {
-    /// Skin colour per vertex (tone, flush, lash line), linear RGBA.
+    /// Skin colour per vertex (tone, flush, lash line, stubble's shadow,
+    /// under-eye), linear RGB; alpha: the stubble's density (0-1), whose
+    /// cut hairs the renderer draws per pixel.
     pub colours: Vec<[f32; 4]>,
     /// Borders of the lips, brows and hair per vertex ([`Regions`]).
     pub regions: Vec<Regions>,
@@ -340,9 +391,12 @@ pub fn paint(mesh: &HeadMesh, style: &FaceStyle) -> Paint {
         .positions
         .iter()
         .map(|&p| {
-            let c = mix(style.skin, style.flush, flush(p, l));
+            let c = mix(style.skin, style.flush, flush(p, l).max(nose_red(p, l)));
+            let beard = stubble(p, l);
+            let c = mix(c, style.stubble, beard);
+            let c = mix(c, style.under_eye, under_eye(p, l));
             let c = mix(c, style.lashes, lashes(p, &upper, &lower));
-            [c[0], c[1], c[2], 1.0]
+            [c[0], c[1], c[2], beard]
         })
         .collect();
     let regions = mesh
@@ -451,6 +505,28 @@ mod tests {
         for p in [l.glabella, l.brow_outer + Vec3::new(0.015, 0.0, 0.0)] {
             assert!(brow(p, l, 0.0).1 < 0.0, "{p}");
         }
+    }
+
+    /// The skin's tone varies as a face's does: a beard's shadow on the
+    /// chin, the jaw and over the upper lip, not on the forehead, the nose
+    /// or the cheekbones; the nose's tip redder than the forehead; the
+    /// skin under the eyes darker than the cheek below it.
+    #[test]
+    fn the_skin_tone_varies_where_a_face_does() {
+        let mesh = HeadMesh::generate(MeshParams { rows: 48 });
+        let l = &mesh.landmarks;
+        let upper_lip_skin = (l.nose_tip + l.upper_lip) / 2.0 - Vec3::Z * 0.004;
+        for p in [l.chin, upper_lip_skin, l.jaw_outer] {
+            assert!(stubble(p, l) > 0.2, "no stubble at {p}: {}", stubble(p, l));
+        }
+        for p in [l.forehead_mid, l.nose_tip, l.cheekbone, l.glabella] {
+            assert!(stubble(p, l) < 0.05, "stubble at {p}: {}", stubble(p, l));
+        }
+        assert!(nose_red(l.nose_tip, l) > 0.3 && nose_red(l.forehead_mid, l) == 0.0);
+        let below = l.lower_lid_mid - Vec3::Y * 0.006;
+        assert!(under_eye(below, l) > 0.3, "{}", under_eye(below, l));
+        assert_eq!(under_eye(l.cheekbone - Vec3::Y * 0.03, l), 0.0);
+        assert_eq!(under_eye(l.upper_lid_mid, l), 0.0);
     }
 
     #[test]

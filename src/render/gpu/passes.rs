@@ -9,7 +9,7 @@ use shisen_face::mesh::HeadMesh;
 use super::uniforms::{Globals, Instance, bind};
 use super::{CLEAR, INSTANCE_STRIDE, Renderer};
 use crate::render::draw::{
-    FILL_DIR, KEY_DIR, Material, MeshKey, TOP_DIR, TOP_LIGHT, key_fill_light,
+    FILL_DIR, KEY_DIR, Material, MeshKey, RIM_DIR, RIM_LIGHT, TOP_DIR, TOP_LIGHT, key_fill_light,
 };
 use crate::render::frame::{AvatarPart, Frame, Looks};
 use crate::render::geometry;
@@ -137,6 +137,7 @@ impl Renderer {
             camera: cam.eye.extend(1.0).to_array(),
             key_dir: key.extend(0.0).to_array(),
             fill_dir: fill.extend(0.0).to_array(),
+            rim_dir: RIM_DIR.normalize().extend(RIM_LIGHT).to_array(),
             floor_light: [floor_light, 0.0, 0.0, 0.0],
             lips: {
                 let l = &frame.lips;

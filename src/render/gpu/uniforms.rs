@@ -26,6 +26,8 @@ pub(super) struct Globals {
     /// x: the top light's strength; y: shadows on (1) or off (0); z: the
     /// normal offset of a shadow lookup, m (a texel and a half).
     pub(super) shadow: [f32; 4],
+    /// The rim light's direction of travel (xyz) and strength (w).
+    pub(super) rim_dir: [f32; 4],
 }
 
 /// One draw's uniforms (`Instance` in `shader.wgsl`), at a dynamic
