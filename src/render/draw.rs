@@ -147,11 +147,16 @@ pub enum Material {
     /// A head of hair: strands combed back over the scalp, their
     /// highlight drawn across them (Kajiya & Kay 1989).
     Scalp = 8,
+    /// A tooth's crown: enamel over dentine, yellower at the neck and
+    /// translucent grey-blue toward the biting edge. Its colour's alpha
+    /// gives the crown's frame the way to that edge: +1 up its local y
+    /// (a lower tooth), -1 down (an upper one).
+    Tooth = 9,
 }
 
 impl Material {
     /// Every material.
-    pub const ALL: [Material; 9] = [
+    pub const ALL: [Material; 10] = [
         Material::Plain,
         Material::Eye,
         Material::Floor,
@@ -161,6 +166,7 @@ impl Material {
         Material::Hair,
         Material::Emissive,
         Material::Scalp,
+        Material::Tooth,
     ];
 
     /// Its vertex and fragment stages (`shader.wgsl`).
@@ -175,6 +181,7 @@ impl Material {
             Material::Hair => ("vs_mesh", "fs_hair"),
             Material::Emissive => ("vs_flat", "fs_flat"),
             Material::Scalp => ("vs_mesh", "fs_scalp"),
+            Material::Tooth => ("vs_mesh", "fs_tooth"),
         }
     }
 

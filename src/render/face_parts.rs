@@ -151,7 +151,7 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     ];
     for (edge, teeth, arch, up, turn) in arches {
         let mut s = 0.0;
-        for &(width, height) in teeth.iter() {
+        for (k, &(width, height)) in teeth.iter().enumerate() {
             let (x, back, angle) = arch_at(arch, s + width / 2.0);
             s += width;
             // Teeth further round the arch sit deeper in the mouth's shade.
@@ -175,11 +175,18 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
                     color,
                     material: Material::Plain,
                 };
-                draws.push(block(
-                    place(up * height / 2.0, TOOTH_HALF_DEPTH),
-                    Vec3::new(width * 0.46, height / 2.0, TOOTH_HALF_DEPTH),
-                    shaded(TEETH, shade),
-                ));
+                // Each tooth a little different in shade (the canines
+                // yellower and darker, as they are).
+                let tint = TOOTH_TINT[k.min(TOOTH_TINT.len() - 1)];
+                let [r, g, b, _] = shaded(TEETH, shade * tint[0]);
+                draws.push(Draw {
+                    material: Material::Tooth,
+                    ..block(
+                        place(up * height / 2.0, TOOTH_HALF_DEPTH),
+                        Vec3::new(width * 0.46, height / 2.0, TOOTH_HALF_DEPTH),
+                        [r, g * tint[1], b * tint[2], -up],
+                    )
+                });
                 draws.push(block(
                     place(
                         up * (height + GUM_HEIGHT / 2.0 - GUM_OVER),
@@ -218,6 +225,19 @@ fn arch_at(arch: &[[f32; 2]], s: f32) -> (f32, f32, f32) {
 const TEETH: [f32; 3] = [0.84, 0.77, 0.68];
 const GUM: [f32; 3] = [0.52, 0.17, 0.17];
 const TONGUE: [f32; 3] = [0.46, 0.13, 0.13];
+/// Each tooth's shade from the midline out (brightness, then green and
+/// blue against red): the canines are darker and yellower than the
+/// incisors beside them (their enamel is thicker over darker dentine), the
+/// premolars between (our reading of shade guides).
+const TOOTH_TINT: [[f32; 3]; 6] = [
+    [1.0, 1.0, 1.0],
+    [0.97, 0.99, 0.98],
+    [0.90, 0.95, 0.88],
+    [0.94, 0.98, 0.95],
+    [0.93, 0.98, 0.95],
+    [0.90, 0.97, 0.93],
+];
+
 /// Half sizes of the tongue's resting body (across, up, back), m: an adult
 /// tongue is about 5 cm across and 7-10 cm long (our reading; only its tip
 /// and the top of its blade show).

@@ -237,11 +237,19 @@ fn eye_colour(local: vec3<f32>) -> vec3<f32> {
         return vec3<f32>(0.005, 0.005, 0.008);
     }
     if (c > LIMBUS_COS) {
-        // Radial streaks of the iris stroma.
+        // The stroma: grey-blue, darker toward the limbus, with a warmer
+        // collarette round the pupil (a light iris's usual central ring),
+        // irregular radial fibres and darker crypts between them (our
+        // reading of iris photographs; a saturated, even blue reads as
+        // glass).
         let a = atan2(d.y, d.x);
-        let streak = 0.85 + 0.15 * sin(a * 23.0);
         let t = (c - LIMBUS_COS) / (PUPIL_COS - LIMBUS_COS);
-        return mix(vec3<f32>(0.10, 0.16, 0.22), vec3<f32>(0.22, 0.38, 0.52), t) * streak;
+        let fibre = 0.8 + 0.2 * sin(a * 29.0 + 2.0 * sin(a * 7.0 + t * 9.0));
+        let crypt = hash2(vec2<f32>(floor(a * 9.0), floor(t * 4.0)));
+        let pit = 1.0 - 0.3 * smoothstep(0.75, 0.95, crypt) * sin(3.1415927 * fract(t * 4.0));
+        let stroma = mix(vec3<f32>(0.07, 0.10, 0.13), vec3<f32>(0.20, 0.28, 0.34), smoothstep(0.0, 0.5, t));
+        let collarette = vec3<f32>(0.20, 0.15, 0.09);
+        return mix(stroma, collarette, smoothstep(0.62, 0.85, t)) * fibre * pit;
     }
     if (c > IRIS_COS) {
         return vec3<f32>(0.05, 0.07, 0.10); // limbal ring
@@ -595,6 +603,23 @@ fn plain_lit(v: VOut, base: vec3<f32>, shine: f32) -> vec4<f32> {
 @fragment
 fn fs_plain(v: VOut) -> @location(0) vec4<f32> {
     return plain_lit(v, inst.color.rgb * v.color.rgb, 0.25);
+}
+
+// A tooth's crown: its colour yellower toward the neck (dentine through
+// thinner enamel there) and greyer and bluer over the last millimetre or
+// so of the biting edge, where enamel has no dentine behind it and the
+// dark mouth shows through (our reading of dental shade photographs);
+// enamel's highlight. `color.a` is the way to the biting edge along the
+// crown's local y (+1 or -1).
+@fragment
+fn fs_tooth(v: VOut) -> @location(0) vec4<f32> {
+    let along = v.local.y * inst.color.a;
+    let edge = smoothstep(0.45, 0.95, along);
+    let neck = smoothstep(-0.2, -0.9, along);
+    var base = inst.color.rgb * v.color.rgb;
+    base = mix(base, base * vec3<f32>(0.62, 0.68, 0.80), edge);
+    base = mix(base, base * vec3<f32>(1.0, 0.93, 0.78), neck);
+    return plain_lit(v, base, 0.35);
 }
 
 // Strands (the lashes): matte, a highlight on strands thinner than a
