@@ -444,7 +444,7 @@ fn face_vertices(sim: &Sim) -> Vec<Vertex> {
         &mut pos,
         &mut wrinkles,
     );
-    let normals = compute_normals(&pos, &mesh.triangles);
+    let normals = smooth_normals(&compute_normals(&pos, &mesh.triangles), &mesh.triangles);
     pos.iter()
         .zip(&normals)
         .zip(&face.paint.colours)
@@ -457,6 +457,25 @@ fn face_vertices(sim: &Sim) -> Vec<Vertex> {
             rest: [rest.x, rest.y],
             ..Vertex::coloured(*p, *n, *c)
         })
+        .collect()
+}
+
+/// The skin's normals, each blended half and half with its neighbours'
+/// mean: the deformed mesh's cells are a few millimetres across, and where
+/// the skin bunches (under a smiling eye, beside a tightened mouth) their
+/// facets would catch the light as streaks; skin bends smoothly over them.
+fn smooth_normals(normals: &[Vec3], triangles: &[[u32; 3]]) -> Vec<Vec3> {
+    let mut sum = vec![Vec3::ZERO; normals.len()];
+    for t in triangles {
+        let [a, b, c] = t.map(|i| i as usize);
+        sum[a] += normals[b] + normals[c];
+        sum[b] += normals[a] + normals[c];
+        sum[c] += normals[a] + normals[b];
+    }
+    normals
+        .iter()
+        .zip(sum)
+        .map(|(n, s)| (*n + s.normalize_or(*n)).normalize_or(*n))
         .collect()
 }
 

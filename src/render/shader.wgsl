@@ -719,8 +719,10 @@ fn fs_scalp(v: VOut) -> @location(0) vec4<f32> {
     let lane = floor(lanes);
     let r = hash2(vec2<f32>(lane, 9.0));
     let ends = HAIRLINE_FRINGE * r * r - 0.001;
-    let core = abs(fract(lanes) - 0.5) < 0.35 || fw > 0.6;
     let h = v.color.a;
+    // The strands' cores thicken from single sparse hairs at the line.
+    let core_w = mix(0.08, 0.35, clamp(h / HAIRLINE_FRINGE, 0.0, 1.0));
+    let core = abs(fract(lanes) - 0.5) < core_w || fw > 0.6;
     if (h < ends || (h < HAIRLINE_FRINGE && !core)) {
         discard;
     }
@@ -734,7 +736,13 @@ fn fs_scalp(v: VOut) -> @location(0) vec4<f32> {
     let s16 = pow4(pow4(sqrt(max(1.0 - th * th, 0.0))));
     let s64 = pow4(s16);
     let diffuse = key_fill_top(v.world, n);
-    let base = inst.color.rgb * v.color.rgb * (0.75 + 0.5 * hairs);
+    // The hair thins toward the hairline over about a centimetre, where
+    // the scalp shows between the strands (a crop's front is never a
+    // solid cap; our reading of photographs): between the strokes the
+    // shell takes the scalp's colour, less and less higher up.
+    let thin = 0.5 * (1.0 - smoothstep(0.0, HAIR_THIN, h));
+    let scalp = mix(inst.color.rgb * v.color.rgb, SCALP, thin * (1.0 - hairs));
+    let base = scalp * (0.75 + 0.5 * hairs);
     let spec = (0.06 * s64 + 0.035 * s16) * (0.3 + 0.7 * hairs) * max(dot(n, key) + 0.3, 0.0);
     return vec4<f32>(base * (0.25 + diffuse) + vec3<f32>(spec), 1.0);
 }
@@ -742,6 +750,10 @@ fn fs_scalp(v: VOut) -> @location(0) vec4<f32> {
 // The band above the hairline in which the hair thins out into single
 // hairs, m (our choice: a hairline thins out over a few millimetres).
 const HAIRLINE_FRINGE: f32 = 0.004;
+// Up to this far above the hairline the scalp shows between the hairs, m,
+// and the scalp's colour there (a paler, greyer skin: linear RGB).
+const HAIR_THIN: f32 = 0.012;
+const SCALP: vec3<f32> = vec3<f32>(0.42, 0.29, 0.23);
 
 // Lamps, and scenery lit once on the CPU (the ring, the hall and its
 // crowd: much of the picture), and the overlay lines: the colour as it
