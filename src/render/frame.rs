@@ -140,8 +140,10 @@ const HAIR: [f32; 4] = {
 };
 const PROP: [f32; 4] = [0.85, 0.65, 0.12, 1.0];
 const WHITE: [f32; 4] = [1.0, 1.0, 1.0, 1.0];
-/// Ears are a little redder than the face.
-const EAR: [f32; 4] = [SKIN[0] * 1.04, SKIN[1] * 0.95, SKIN[2] * 0.95, 1.0];
+/// Ears are redder than the face: thin, the blood in them shows (the ear
+/// and the cheek are the face's reddest parts: Yamamoto et al. 2008,
+/// Skin Res. Technol. 14:26).
+const EAR: [f32; 4] = [SKIN[0] * 1.02, SKIN[1] * 0.86, SKIN[2] * 0.84, 1.0];
 /// Length of drawn field-of-view edges and joint axes, m.
 const FOV_LEN: f32 = 0.5;
 const AXIS_LEN: f32 = 0.06;

@@ -59,7 +59,7 @@ impl FaceStyle {
         lashes: [0.02, 0.015, 0.015],
         flush: [0.66, 0.30, 0.26],
         inside: [0.10, 0.015, 0.02],
-        stubble: [0.46, 0.33, 0.27],
+        stubble: [0.48, 0.34, 0.28],
         under_eye: [0.44, 0.27, 0.24],
     };
 }
@@ -338,7 +338,7 @@ fn stubble(p: Vec3, l: &Landmarks) -> f32 {
     let neck = smoothstep(l.jaw_lower_edge.y - 0.035, l.jaw_lower_edge.y - 0.005, p.y);
     // The groove under the nose and the corners of the mouth carry less.
     let front = smoothstep(-0.04, -0.01, p.z - l.mouth_corner.z);
-    0.6 * below * neck * front
+    0.4 * below * neck * front
 }
 
 /// Each vertex's mean edge length (the mesh's local resolution), m.

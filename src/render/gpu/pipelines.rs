@@ -308,6 +308,6 @@ pub(super) fn shader_source() -> String {
         VEST_NECK[5],
         VEST_HEM[0],
         VEST_HEM[1],
-        include_str!("../shader.wgsl")
+        concat!(include_str!("../shader.wgsl"), include_str!("../face.wgsl"))
     )
 }
