@@ -315,13 +315,15 @@ fn fs_eye(v: VOut) -> @location(0) vec4<f32> {
     // Diffuse on the eyeball's own sphere, wrapped (the sclera is
     // translucent: light scattered in it brightens the eye's corners,
     // which face away from the lights), the highlights on the cornea.
+    // The face's balance of lights (the skin's), so the whites are no
+    // brighter than the skin round them would be in the same light.
     let ne = normalize(v.normal);
     let wrap = 0.6;
-    let diffuse = (0.85 * max(dot(ne, key) + wrap, 0.0) + 0.35 * max(dot(ne, fill) + wrap, 0.0))
-        / (1.0 + wrap) + top_light(v.world, ne, wrap);
+    let diffuse = (FACE_KEY * max(dot(ne, key) + wrap, 0.0) + FACE_FILL * max(dot(ne, fill) + wrap, 0.0))
+        / (1.0 + wrap) + SKIN_TOP * top_light(v.world, ne, wrap);
     let c16 = pow4(pow4(max(dot(n, normalize(key + view_dir)), 0.0)));
     let c256 = pow4(pow4(c16));
     let cf64 = pow4(pow4(pow4(max(dot(n, normalize(fill + view_dir)), 0.0))));
     let spec = (1.6 * c256 + 0.12 * c16 + 0.5 * cf64 * cf64) * lid_shade;
-    return vec4<f32>(base * (0.22 + diffuse) + vec3<f32>(spec), 1.0);
+    return vec4<f32>(base * (sky(ne) + diffuse) + vec3<f32>(spec), 1.0);
 }
