@@ -61,31 +61,33 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
             MOUTH,
         )
     };
-    let mut corridors = Vec::new();
     // The buccal corridors: the dark space between the back teeth and the
-    // cheeks, which a wide mouth shows at its corners (and a closed one's seam at
-    // its ends). A shaded blob
-    // behind each deformed corner, short of the cheek's skin beside it,
-    // hides what stands inside the head there.
-    let ends =
-        |rim: &[u32]| [rim[0], rim[rim.len() - 1]].map(|i| Vec3::from_array(face[i as usize].pos));
-    let (u, lo) = (ends(&mesh.rims.upper_lip), ends(&mesh.rims.lower_lip));
-    for (a, b) in [(u[0], lo[0]), (u[1], lo[1])]
-        .into_iter()
-        .chain([(u[0], lo[1]), (u[1], lo[0])])
-        .filter(|(a, b)| a.x.signum() == b.x.signum() && a.distance(*b) < 0.01)
-    {
+    // cheeks, which a wide mouth shows at its corners (and a closed one's
+    // seam at its ends). A shaded blob behind each deformed corner, short
+    // of the cheek's skin beside it, hides what stands inside the head
+    // there.
+    let end_on = |rim: &[u32], side: f32| {
+        [rim[0], rim[rim.len() - 1]]
+            .map(|i| Vec3::from_array(face[i as usize].pos))
+            .into_iter()
+            .find(|p| p.x.signum() == side)
+    };
+    let mut corridors = Vec::new();
+    for side in [-1.0f32, 1.0] {
+        let (Some(a), Some(b)) = (
+            end_on(&mesh.rims.upper_lip, side),
+            end_on(&mesh.rims.lower_lip, side),
+        ) else {
+            continue;
+        };
         let corner = (a + b) / 2.0;
-        let centre = corner + Vec3::new(-corner.x.signum() * 0.004, 0.0, -CORRIDOR_HALF[2]);
-        corridors.push(ellipsoid(
-            centre,
-            Vec3::new(
-                CORRIDOR_HALF[0],
-                CORRIDOR_HALF[1] + gap * 0.3,
-                CORRIDOR_HALF[2],
-            ),
-            MOUTH,
-        ));
+        let centre = corner + Vec3::new(-side * 0.004, 0.0, -CORRIDOR_HALF[2]);
+        let half = Vec3::new(
+            CORRIDOR_HALF[0],
+            CORRIDOR_HALF[1] + gap * 0.3,
+            CORRIDOR_HALF[2],
+        );
+        corridors.push(ellipsoid(centre, half, MOUTH));
     }
     let lips_back = upper.z.min(lower.z) - 0.006;
     if gap < TEETH_SHOW_GAP {
