@@ -96,7 +96,7 @@ pub const TOP_LIGHT: f32 = 0.35;
 /// The rim light's direction of travel: from behind the VH, above and to
 /// its right, toward you (the third lamp of a portrait's three-point
 /// rig: it draws the edge of the cheek, jaw and ear against the dark hall).
-/// Only skin and hair take it, at grazing angles.
+/// Only skin takes it (`skin()` in shader.wgsl), at grazing angles.
 pub const RIM_DIR: Vec3 = Vec3::new(0.6, -0.7, 1.0);
 /// The rim light's strength.
 pub const RIM_LIGHT: f32 = 0.55;
@@ -132,7 +132,8 @@ pub enum Material {
     /// Flat ground lit from above (the ring's canvas): the instance colour
     /// at one light, nothing computed per pixel.
     Floor = 2,
-    /// Skin: wrapped, reddened diffuse and a weak sheen.
+    /// Skin: diffuse wrapped past the terminator, red furthest; sky and
+    /// bounce ambient; two weak specular lobes; the rim light.
     Skin = 3,
     /// The face: skin with its painted borders and wrinkles.
     Face = 4,

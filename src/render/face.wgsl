@@ -167,11 +167,14 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
         n = -n;
     }
     var base = inst.color.rgb * v.color.rgb;
+    // The face frame's across and up axes in the world.
+    let ax = (inst.model * vec4<f32>(1.0, 0.0, 0.0, 0.0)).xyz;
+    let ay = (inst.model * vec4<f32>(0.0, 1.0, 0.0, 0.0)).xyz;
+    let across = normalize(ax);
     // The stubble's cut hairs (`v.color.a`, the beard's density), sampled
     // in the plane the skin faces most, the face's front or the jaw's
     // side, so the dots do not stretch (where the plane changes, the
     // pattern's footprint is wide and the dots fade to their mean).
-    let across = normalize((inst.model * vec4<f32>(1.0, 0.0, 0.0, 0.0)).xyz);
     let side = abs(dot(n, across)) > 0.6;
     let dots = stubble_dots(select(v.local.xy, v.local.zy, side));
     base = base * (1.0 - 0.6 * v.color.a * dots);
@@ -196,9 +199,8 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
     // its corners into the opening, where it turns to face the mouth's
     // middle: there it is the corner's moist, shaded inner lip, not the
     // cheek's skin.
-    let lip_across = normalize((inst.model * vec4<f32>(1.0, 0.0, 0.0, 0.0)).xyz);
     let beside = length(vec2<f32>(max(abs(v.rest.x) - g.lips[0].x, 0.0), lip_y));
-    let turned_in = -dot(n, lip_across) * sign(v.rest.x);
+    let turned_in = -dot(n, across) * sign(v.rest.x);
     let commissure = smoothstep(0.012, 0.004, beside) * smoothstep(0.25, 0.55, turned_in);
     base = mix(base, g.face_regions[0].rgb * vec3<f32>(0.55, 0.40, 0.42), commissure);
     // The lines wander and vary in depth, strongest mid-lip.
@@ -208,7 +210,7 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
     let sulci_fade = clamp(1.0 - 2.0 * fwidth(sulci), 0.0, 1.0);
     let depth = hash2(vec2<f32>(floor(sulci), select(1.0, 2.0, lip_y > 0.0)));
     let sulcus = 0.14 * depth * (1.0 - to_border * to_border) * sin(6.2831853 * sulci);
-    n = normalize(n + lip_across * (cover.x * sulci_fade * sulcus));
+    n = normalize(n + across * (cover.x * sulci_fade * sulcus));
     // Brows as hairs: strokes along the hairs' lie, rising steeply out of
     // the brow's head and lying flatter toward the tail (our reading of how
     // brow hairs grow), denser in the body, over a faint base.
@@ -237,8 +239,6 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
     var furrow = 0.0;
     var tilt = 1.0;
     if (v.wrinkle.x + v.wrinkle.y > 1e-4) {
-        let ax = (inst.model * vec4<f32>(1.0, 0.0, 0.0, 0.0)).xyz;
-        let ay = (inst.model * vec4<f32>(0.0, 1.0, 0.0, 0.0)).xyz;
         let dx = normalize(ax - n * dot(ax, n));
         let dy = normalize(ay - n * dot(ay, n));
         let rx = clamp((0.33 - fwidth(v.wrinkle.z)) * 6.0, 0.0, 1.0);
@@ -264,8 +264,6 @@ fn fs_face(v: PaintedOut, @builtin(front_facing) front: bool) -> @location(0) ve
     // Pores, finer on the forehead than over the nose and cheeks (our
     // choice of 0.5-0.8 mm spacing), on bare skin only.
     let bare = (1.0 - cover.x) * (1.0 - cover.z);
-    let ax = (inst.model * vec4<f32>(1.0, 0.0, 0.0, 0.0)).xyz;
-    let ay = (inst.model * vec4<f32>(0.0, 1.0, 0.0, 0.0)).xyz;
     let cell = select(0.0008, 0.0005, v.local.y > 0.02);
     n = select(n, pores(n, v.local.xy, ax, ay, cell), bare > 0.5);
     let top = SKIN_TOP * top_light(v.world, normalize(v.normal), 0.0);

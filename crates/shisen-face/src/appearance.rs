@@ -336,7 +336,8 @@ fn stubble(p: Vec3, l: &Landmarks) -> f32 {
     let cheek_line = a.y + 0.002 + (b.y + 0.028 - a.y) * t;
     let below = smoothstep(0.0, 0.008, cheek_line - p.y);
     let neck = smoothstep(l.jaw_lower_edge.y - 0.035, l.jaw_lower_edge.y - 0.005, p.y);
-    // The groove under the nose and the corners of the mouth carry less.
+    // Only on the face and the jaw's side, fading toward the back of the
+    // head (more than 1-4 cm behind the mouth's corners).
     let front = smoothstep(-0.04, -0.01, p.z - l.mouth_corner.z);
     0.4 * below * neck * front
 }
