@@ -104,18 +104,24 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     let theta = sim.face_state.activation.jaw_deg.to_radians();
     let lower_edge = lower_rest + shisen_face::muscle::jaw_rotation(lower_rest - jaw.pivot, theta);
     // Lips bunched in front of the teeth (a tightened mouth pulls the skin
-    // above and below the lips over them) must still cover them: the teeth
-    // go back behind the nearest skin in front of them, if it is nearer
-    // than their place on the bones (the surface has no lip thickness).
+    // above and below the lips over them) must still cover them: each
+    // arch goes back behind the nearest skin in front of its crowns, if it
+    // is nearer than their place on the bones (the surface has no lip
+    // thickness). Each arch looks only at the skin level with its own
+    // crowns: a lower lip carried down and back by the jaw lies under the
+    // upper teeth, not in front of them.
     let half_w = w * 0.62;
-    let (y0, y1) = (lower_edge.y - 0.01, upper_edge.y + 0.01);
-    let skin = face
-        .iter()
-        .map(|v| Vec3::from_array(v.pos))
-        .filter(|p| p.x.abs() < half_w && (y0..y1).contains(&p.y))
-        .filter(|p| p.z > rest_lip.z - LIP_REACH)
-        .fold(f32::INFINITY, |z, p| z.min(p.z));
-    let push = (upper_edge.z - (skin - 0.001)).max(0.0);
+    let skin_before = |y0: f32, y1: f32, z: f32| {
+        let skin = face
+            .iter()
+            .map(|v| Vec3::from_array(v.pos))
+            .filter(|p| p.x.abs() < half_w && (y0..y1).contains(&p.y))
+            .filter(|p| p.z > rest_lip.z - LIP_REACH)
+            .fold(f32::INFINITY, |z, p| z.min(p.z));
+        (z - (skin - 0.001)).max(0.0)
+    };
+    let push_upper = skin_before(upper_edge.y - 0.001, upper_edge.y + 0.01, upper_edge.z);
+    let push_lower = skin_before(lower_edge.y - 0.01, lower_edge.y + 0.001, lower_edge.z);
     // Light reaches teeth behind the lips only through the opening: the
     // open fraction of their view out of a slit of width `gap` at the
     // lips' depth `d` is about g / (g + 2 d); scaled so a wide-open mouth
@@ -124,7 +130,8 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     // The cavity stands behind the upper canines and behind the lower
     // ones, which the jaw carries back as it opens (about 6 mm behind the
     // lower incisors round their smaller arch).
-    let front = (upper_edge.z - CAVITY_BEHIND_TEETH).min(lower_edge.z - 0.007) - push;
+    let front =
+        (upper_edge.z - CAVITY_BEHIND_TEETH - push_upper).min(lower_edge.z - 0.007 - push_lower);
     let mut draws = corridors;
     draws.push(cavity(lips_back.min(front), 1.3, 0.045));
     let shaded = |c: [f32; 3], shade: f32| [c[0] * shade, c[1] * shade, c[2] * shade, 1.0];
@@ -139,7 +146,7 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
                 Vec3::from_array(TONGUE_HALF),
                 Quat::from_rotation_x(theta),
                 tongue_rest + shisen_face::muscle::jaw_rotation(tongue_rest - jaw.pivot, theta)
-                    - Vec3::Z * push,
+                    - Vec3::Z * push_lower,
             ),
         color: shaded(TONGUE, lit),
         material: Material::Plain,
@@ -148,10 +155,17 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     // lower one turning with the jaw), each crown facing out of the arch,
     // and the gum over its neck.
     let arches = [
-        (upper_edge, &UPPER_TEETH, &UPPER_ARCH, 1.0, 0.0),
-        (lower_rest, &LOWER_TEETH, &LOWER_ARCH, -1.0, theta),
+        (upper_edge, &UPPER_TEETH, &UPPER_ARCH, 1.0, 0.0, push_upper),
+        (
+            lower_rest,
+            &LOWER_TEETH,
+            &LOWER_ARCH,
+            -1.0,
+            theta,
+            push_lower,
+        ),
     ];
-    for (edge, teeth, arch, up, turn) in arches {
+    for (edge, teeth, arch, up, turn, push) in arches {
         let mut s = 0.0;
         for (k, &(width, height)) in teeth.iter().enumerate() {
             let (x, back, angle) = arch_at(arch, s + width / 2.0);

@@ -119,6 +119,11 @@ pub struct Sphincter {
     pub ly: f32,
     /// Active part of the ellipse.
     pub part: SphincterPart,
+    /// Share of the pull along `axis_x` that moves the skin, 0-1: 1 is
+    /// Waters's ring (F6), which shrinks equally in both axes; less holds
+    /// the ring's ends in place (the mouth's corners, anchored at the
+    /// modiolus: [`crate::params::LipParams::oris_width_share`]).
+    pub x_share: f32,
 }
 
 impl Sphincter {
@@ -151,8 +156,8 @@ impl Sphincter {
             return Vec3::ZERO;
         }
         let f = 1.0 - 0.5 * rho; // (F6)
-        let op_plane = px * self.axis_x + py * self.axis_y;
-        -2.0 * k * f * side.min(1.0) * op_plane // (F6)
+        let op_plane = px * self.x_share * self.axis_x + py * self.axis_y;
+        -2.0 * k * f * side.min(1.0) * op_plane // (F6), (O2)
     }
 }
 
@@ -418,6 +423,7 @@ mod tests {
             lx: 0.02,
             ly: 0.012,
             part: SphincterPart::Full,
+            x_share: 1.0,
         }
     }
 

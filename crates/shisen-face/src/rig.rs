@@ -126,7 +126,7 @@ fn place(id: MuscleId, l: &Landmarks, p: &FaceParams) -> MuscleGeometry {
     let ec = m(l.eye_centre);
     let gap = l.upper_lid_mid.y - l.lower_lid_mid.y;
     let fissure = l.eye_outer_corner.x - l.eye_inner_corner.x;
-    let sph = |centre: Vec3, lx: f32, ly: f32, part| {
+    let sph = |centre: Vec3, lx: f32, ly: f32, part, x_share: f32| {
         MuscleGeometry::Sphincter(Sphincter {
             centre,
             axis_x: Vec3::X,
@@ -134,6 +134,7 @@ fn place(id: MuscleId, l: &Landmarks, p: &FaceParams) -> MuscleGeometry {
             lx,
             ly,
             part,
+            x_share,
         })
     };
     let (v1, v2) = match id.kind {
@@ -155,10 +156,14 @@ fn place(id: MuscleId, l: &Landmarks, p: &FaceParams) -> MuscleGeometry {
                 0.25 * fissure,
                 gap / 1.65,
                 SphincterPart::Lower,
+                1.0,
             );
         }
-        OculiOrbital => return sph(ec, 0.020, 0.016, SphincterPart::Lower),
-        OrbicularisOris => return sph(l.mouth_centre, 0.022, 0.013, SphincterPart::Full),
+        OculiOrbital => return sph(ec, 0.020, 0.016, SphincterPart::Lower, 1.0),
+        OrbicularisOris => {
+            let share = p.lips.oris_width_share.unwrap_or(1.0) as f32;
+            return sph(l.mouth_centre, 0.022, 0.013, SphincterPart::Full, share);
+        }
         Jaw => unreachable!("the jaw is not a channel"),
     };
     let inf = p.influence[&id.kind];
@@ -516,5 +521,29 @@ mod tests {
             (open - closed - max).abs() < 0.1 * max,
             "{open} -> {closed}"
         );
+    }
+
+    /// AU 23 (orbicularis oris at anger's 0.46) narrows the lips and holds
+    /// the mouth's width (the corners anchored at the modiolus,
+    /// `oris_width_share` 0.3: each corner in by about 3 mm); the thesis's
+    /// ring draws them in as far as it closes the lips (about 10 mm, a
+    /// pucker).
+    #[test]
+    fn the_lip_tightener_keeps_the_mouth_wide() {
+        let mesh = HeadMesh::generate(MeshParams { rows: 48 });
+        let corner = mesh.rims.upper_lip[0] as usize;
+        let inward = |share: Option<f64>| {
+            let mut params = FaceParams::default_params();
+            params.lips.oris_width_share = share;
+            let rig = Rig::build(&mesh, &params);
+            let mut a = Activation::default();
+            a.k[rig.lip_seal.channel] = 0.46;
+            let mut out = vec![Vec3::ZERO; mesh.positions.len()];
+            rig.deform(&mesh, &a, &mut out);
+            mesh.positions[corner].x.abs() - out[corner].x.abs()
+        };
+        let (human, thesis) = (inward(Some(0.3)), inward(None));
+        assert!((0.001..0.0045).contains(&human), "{human}");
+        assert!(thesis > 0.008, "{thesis}");
     }
 }

@@ -29,6 +29,20 @@ pub struct LipParams {
     #[serde(default = "default_seal_max_gap")]
     #[schemars(range(max = 0.03), extend("exclusiveMinimum" = 0.0))]
     pub seal_max_gap_m: f64,
+    /// Share of orbicularis oris's pull across the mouth's width that
+    /// moves the lips, 0-1, or `None` for the thesis's ring (F6), which
+    /// draws the corners in as far as it presses the lips together, so
+    /// that its anger (0.46) purses the mouth to half its width. The
+    /// corners are held at the modiolus, where the cheek's muscles meet the
+    /// ring (Standring 2016, Gray's Anatomy 41st ed., ch. 30); pulling them
+    /// in is the lip pucker, AU 18, of the incisivus muscles, while the
+    /// lip tightener, AU 23, narrows the red of the lips and leaves the
+    /// mouth's width nearly as it was (Ekman, Friesen & Hager 2002, FACS
+    /// Manual). Default `Some(0.3)` (our choice: a full AU 23 then brings
+    /// each corner in about 3 mm).
+    #[serde(default = "default_oris_width_share")]
+    #[schemars(range(min = 0.0, max = 1.0))]
+    pub oris_width_share: Option<f64>,
 }
 
 fn default_seal_k() -> Option<f64> {
@@ -39,11 +53,16 @@ fn default_seal_max_gap() -> f64 {
     0.008
 }
 
+fn default_oris_width_share() -> Option<f64> {
+    Some(0.3)
+}
+
 impl Default for LipParams {
     fn default() -> Self {
         Self {
             seal_k: default_seal_k(),
             seal_max_gap_m: default_seal_max_gap(),
+            oris_width_share: default_oris_width_share(),
         }
     }
 }

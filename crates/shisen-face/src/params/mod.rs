@@ -259,6 +259,7 @@ impl FaceParams {
         // also is: it cannot refuse `Some(NaN)`, so this does.
         for (field, v) in [
             ("lips.seal_k", self.lips.seal_k),
+            ("lips.oris_width_share", self.lips.oris_width_share),
             ("blink.levator_max_raise_m", self.blink.levator_max_raise_m),
         ] {
             if let Some(x) = v.filter(|x| !x.is_finite()) {

@@ -141,6 +141,7 @@ impl Model {
         seed.skin.thickening = 0.0;
         seed.skin.domain_fade_m = 0.0;
         seed.lips.seal_k = None;
+        seed.lips.oris_width_share = None;
         seed.reflex.enabled = false;
         seed.prototypes = None;
         if seed != self.face.params {
