@@ -33,3 +33,33 @@ fn a_soak_in_rounds_rests_between_them() {
     // (Punching through the rest too would make it about 210.)
     assert!((120..190).contains(&thrown), "{thrown} punches");
 }
+
+/// The partner defends as a sparring partner does (a guard, covering up
+/// and slipping after a human reaction time): a pro's punches land less
+/// often on it than on a partner that never defends, and about as often
+/// as elite boxers' do (28-40 %; Davis et al. 2018).
+#[test]
+fn the_partner_defends_against_the_vh_punches() {
+    use shisen::tools::soak::{BotRates, SoakSetup, soak};
+    let accuracy = |defend: f64| {
+        let setup = SoakSetup {
+            opponent: Some("pro".parse().expect("a level")),
+            partner: BotRates {
+                defend,
+                ..Default::default()
+            },
+            ..Default::default()
+        };
+        let r = soak(2.0, 2, setup, |_| true);
+        assert!(r.passed(), "{:?}", r.failures);
+        let vh = r.card.vh.total();
+        assert!(vh.thrown > 30, "{} punches", vh.thrown);
+        f64::from(vh.landed) / f64::from(vh.thrown)
+    };
+    let (open, defended) = (accuracy(0.0), accuracy(0.6));
+    println!(
+        "the pro's accuracy: {open:.2} on a partner that never defends, {defended:.2} on one that does"
+    );
+    assert!(defended < open - 0.1, "{defended} against {open}");
+    assert!((0.2..0.5).contains(&defended), "{defended}");
+}

@@ -254,6 +254,12 @@ pub enum Command {
         /// Without it the sparring goes on without a pause.
         #[arg(long)]
         rounds: bool,
+        /// Share of the VH's punches the random partner defends against
+        /// (covering up or slipping, after a human reaction time), 0-1;
+        /// 0: it never defends. Half its idle glove moves go back to its
+        /// guard whatever this is.
+        #[arg(long, default_value_t = 0.6, value_parser = number_in(0.0, 1.0, ""))]
+        partner_defence: f64,
         /// Allow more than 600 simulated minutes.
         #[arg(long)]
         force: bool,

@@ -243,6 +243,7 @@ fn main() -> ExitCode {
             balanced,
             opponent,
             rounds,
+            partner_defence,
             force,
         }) => verdict(soak_cmd(
             minutes,
@@ -251,6 +252,10 @@ fn main() -> ExitCode {
                 balanced,
                 opponent,
                 rounds,
+                partner: shisen::tools::soak::BotRates {
+                    defend: partner_defence,
+                    ..Default::default()
+                },
             },
             force,
         )),

@@ -3,8 +3,9 @@
 //!
 //! A body is seen when its centre lies inside either eye's field of view
 //! (a per-eye field around that eye's current line of sight) and the ray
-//! from that eye to the centre hits the body itself first (occlusion, a
-//! ray query the world answers). The VH's own segments are skipped unless
+//! from that eye to the centre, or to a point round it, hits the body
+//! itself first (occlusion, a ray query the world answers: a body partly
+//! behind another is seen). The VH's own segments are skipped unless
 //! `see_self` is set.
 //!
 //! Vision reads the world through the small [`Scenery`] trait, so it runs
@@ -47,6 +48,39 @@ pub trait Scenery {
     /// reaches the target's centre) hits body `target` before anything else
     /// (VH parts never block: the eyes look out of the head).
     fn first_hit(&self, from: Vec3, dir: DVec3, target: BodyId) -> bool;
+    /// How far body `b` reaches from its centre across a line of sight, m:
+    /// about its half width (0, the default: vision tests its centre only).
+    fn radius(&self, _b: BodyId) -> f64 {
+        0.0
+    }
+}
+
+/// Where vision looks for a body whose centre is hidden: four points
+/// round the centre across the line of sight, at this fraction of the
+/// body's [`Scenery::radius`] (inside its outline).
+const RIM: f64 = 0.7;
+
+/// Whether an eye at `eye` sees body `b` (centre `centre`): the ray to its
+/// centre reaches it first or, if something stands in front of the centre,
+/// a ray to one of four points round it does. A head behind two raised
+/// gloves still shows between and above them, and is seen; only a body
+/// hidden behind others is not (gaze.md 3).
+fn sees(world: &impl Scenery, eye: Vec3, centre: DVec3, b: BodyId) -> bool {
+    let from = eye.as_dvec3();
+    let to = centre - from;
+    if world.first_hit(eye, to, b) {
+        return true;
+    }
+    let r = RIM * world.radius(b);
+    if r <= 0.0 {
+        return false;
+    }
+    let f = to.normalize_or(DVec3::Z);
+    let across = f.cross(DVec3::Y).normalize_or(DVec3::X);
+    let up = across.cross(f);
+    [across, -across, up, -up]
+        .into_iter()
+        .any(|d| world.first_hit(eye, centre + d * r - from, b))
 }
 
 /// One eye's field of view around its line of sight, degrees (gaze.md 3:
@@ -260,7 +294,7 @@ pub fn see(world: &impl Scenery, p: &VisionParams, open: [bool; 2], out: &mut Ve
             if !in_field(&p.field, *los, head_inv * ray_dir.normalize(), k == 0) {
                 continue;
             }
-            by_eye[k] = !p.occlusion || world.first_hit(*eye_pos, ray_dir, i);
+            by_eye[k] = !p.occlusion || sees(world, *eye_pos, pos, i);
         }
         if !by_eye[0] && !by_eye[1] {
             continue;
@@ -420,5 +454,69 @@ mod tests {
         // the field moves with the line of sight
         let turned = at(40.0, 0.0);
         assert!(in_field(&f, turned, at(139.0, 0.0), true));
+    }
+
+    /// A head 1 m ahead behind a glove that hides its centre (a disc of
+    /// radius `cover` round the line of sight, 0.2 m before it), seen
+    /// round the glove when the glove is smaller than the head.
+    struct Covered {
+        head: f64,
+        cover: f64,
+    }
+
+    impl Scenery for Covered {
+        fn head_rotation(&self) -> DQuat {
+            DQuat::IDENTITY
+        }
+        fn eye(&self, _: usize) -> (Vec3, DVec3) {
+            (Vec3::ZERO, DVec3::Z)
+        }
+        fn body_count(&self) -> usize {
+            1
+        }
+        fn is_own(&self, _: BodyId) -> bool {
+            false
+        }
+        fn position(&self, _: BodyId) -> DVec3 {
+            DVec3::Z
+        }
+        fn motion(&self, _: BodyId) -> Motion {
+            Motion {
+                orientation: DQuat::IDENTITY,
+                velocity: DVec3::ZERO,
+                angvel: DVec3::ZERO,
+            }
+        }
+        fn first_hit(&self, from: Vec3, dir: DVec3, _: BodyId) -> bool {
+            // Where the ray crosses the glove's plane (z = 0.8), and
+            // whether it then reaches the head.
+            let at = from.as_dvec3() + dir * (0.8 - f64::from(from.z)) / dir.z;
+            let off = DVec3::new(at.x, at.y, 0.0).length();
+            off >= self.cover && (dir.normalize() - DVec3::Z).length() <= self.head + 1e-9
+        }
+        fn radius(&self, _: BodyId) -> f64 {
+            self.head
+        }
+    }
+
+    #[test]
+    fn a_body_partly_behind_another_is_seen() {
+        let seen = |head, cover| {
+            let mut out = Vec::new();
+            see(
+                &Covered { head, cover },
+                &VisionParams::default(),
+                [true, true],
+                &mut out,
+            );
+            !out.is_empty()
+        };
+        assert!(seen(0.1, 0.0), "in the open");
+        // A glove of 5 cm radius hides the centre, not the head's edges.
+        assert!(seen(0.1, 0.05), "round a small glove");
+        // One as wide as the head's rim points hides it all.
+        assert!(!seen(0.1, 0.1), "behind a wide one");
+        // A body of no size is tested at its centre only.
+        assert!(seen(0.0, 0.0) && !seen(0.0, 0.05), "no size");
     }
 }

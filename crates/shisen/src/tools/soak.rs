@@ -5,8 +5,9 @@
 use glam::DVec3;
 use rand::rngs::StdRng;
 use rand::{RngExt, SeedableRng};
+use rand_distr::{Distribution, StandardNormal};
 
-use crate::physics::body::{HARD_STOP_MARGIN_DEG, Seg};
+use crate::physics::body::{HARD_STOP_MARGIN_DEG, OpponentPart, Seg};
 use crate::scene::LoadedScene;
 use crate::scene::opponent::Opponent;
 use crate::sim::blows::Fighter;
@@ -29,6 +30,12 @@ pub struct BotRates {
     pub dodge: f64,
     /// Emotion changes of the VH's face.
     pub emotion: f64,
+    /// Share of the VH's punches, seen coming, that the partner defends
+    /// against, 0-1 ([`SparringBot`]'s defence; 0: it never defends, as
+    /// the partner did before it had a guard). Default 0.6 (our choice:
+    /// with its guard, a pro's punches then land 30-40 %, elite boxers'
+    /// accuracy, Davis et al. 2018).
+    pub defend: f64,
 }
 
 impl Default for BotRates {
@@ -39,18 +46,59 @@ impl Default for BotRates {
             wave: 0.1,
             dodge: 0.3,
             emotion: 0.1,
+            defend: 0.6,
         }
     }
 }
 
 /// A seeded random sparring partner: it pushes timeline events into the
 /// simulation as it runs, exactly as live input does.
+///
+/// It defends as a sparring partner does, from what it sees: a VH glove
+/// coming at its head faster than [`SEEN_SPEED`] is a punch seen; it
+/// answers a share of them ([`BotRates::defend`]) after a human reaction
+/// time ([`REACTION_S`]), covering up (both gloves to its face: the shell)
+/// or slipping its head aside. Half its idle glove moves are back to its
+/// guard, in front of its chin. So the VH's punches meet a guard and a
+/// moving head, and their accuracy is a boxer's, not a punch bag's.
 pub struct SparringBot {
     rng: StdRng,
     rates: BotRates,
     /// Events pushed so far.
     pub events: u64,
+    /// Per VH glove (left, right): a punch of it already seen.
+    seen: [bool; 2],
+    /// Defences decided, and when they start (s).
+    pending: Vec<(f64, Defence)>,
 }
+
+/// A defence the partner answers a punch with.
+#[derive(Clone, Copy, Debug)]
+enum Defence {
+    /// Both gloves to the face.
+    Cover,
+    /// The head aside, toward +x (true) or -x.
+    Slip(bool),
+}
+
+/// A VH glove coming at the partner's head faster than this is a punch
+/// seen, m/s (a guard's adjustments move the gloves at under 2 m/s; a
+/// punch's peak is 5-9 m/s).
+const SEEN_SPEED: f32 = 3.0;
+/// The partner's reaction time to a punch it sees: mean and standard
+/// deviation, and its bounds, s. Simple visual reaction times of adults
+/// are about 0.19-0.25 s (Welford 1980, Reaction Times, ch. 3); a choice
+/// between defences costs a little more.
+const REACTION_S: (f64, f64, f64, f64) = (0.22, 0.04, 0.15, 0.35);
+/// The partner's guard relative to its head: each glove this far to its
+/// side, below the eyes and toward the VH, m (gloves beside the chin,
+/// as boxers hold them).
+const GUARD: (f64, f64, f64) = (0.09, -0.06, 0.16);
+/// The share of the partner's defences that cover up; the rest slip
+/// (our choice: the shell is the sparring novice's first defence).
+const COVER_SHARE: f64 = 0.7;
+/// A cover: the gloves closer in, higher, m.
+const COVER: (f64, f64, f64) = (0.06, -0.01, 0.12);
 
 impl SparringBot {
     /// A bot with its own random stream.
@@ -59,7 +107,76 @@ impl SparringBot {
             rng: StdRng::seed_from_u64(seed ^ 0x05EE_DB0B),
             rates,
             events: 0,
+            seen: [false; 2],
+            pending: Vec::new(),
         }
+    }
+
+    /// Where the partner's glove `side` (-1 left, +1 right, in x) goes for
+    /// a guard `g` (across, up, toward the VH), world: about its head,
+    /// toward the VH's head.
+    fn about_head(sim: &Sim, side: f64, g: (f64, f64, f64)) -> DVec3 {
+        let w = &sim.world;
+        let head = w.position(w.part(OpponentPart::Head)).as_dvec3();
+        let vh = w.position(Seg::Head).as_dvec3();
+        let to_vh = DVec3::new(vh.x - head.x, 0.0, vh.z - head.z).normalize_or_zero();
+        head + DVec3::new(side * g.0, g.1, 0.0) + to_vh * g.2
+    }
+
+    /// See the VH's punches coming and decide the defences (after the
+    /// reaction time), and start those whose time has come.
+    fn defend(&mut self, sim: &Sim) -> Vec<Action> {
+        let mut out = Vec::new();
+        let w = &sim.world;
+        let head = w.position(w.part(OpponentPart::Head));
+        for (k, glove) in [Seg::GloveL, Seg::GloveR].into_iter().enumerate() {
+            let to = head - w.position(glove);
+            let approach = w.velocity(glove).dot(to.normalize_or_zero());
+            if approach < 1.0 {
+                self.seen[k] = false;
+            } else if approach > SEEN_SPEED && !self.seen[k] {
+                self.seen[k] = true;
+                if self.rng.random::<f64>() < self.rates.defend {
+                    let (mean, sd, lo, hi) = REACTION_S;
+                    let z: f64 = StandardNormal.sample(&mut self.rng);
+                    let at = sim.time() + (mean + sd * z).clamp(lo, hi);
+                    let how = if self.rng.random::<f64>() < COVER_SHARE {
+                        Defence::Cover
+                    } else {
+                        Defence::Slip(self.rng.random::<bool>())
+                    };
+                    self.pending.push((at, how));
+                }
+            }
+        }
+        let now = sim.time();
+        while let Some(i) = self.pending.iter().position(|(at, _)| *at <= now) {
+            let (_, how) = self.pending.swap_remove(i);
+            match how {
+                Defence::Cover => {
+                    for (part, side) in [(Part::LeftGlove, -1.0), (Part::RightGlove, 1.0)] {
+                        let to = Self::about_head(sim, side, COVER);
+                        out.push(Action::Move {
+                            part,
+                            to,
+                            duration: 0.1,
+                        });
+                    }
+                }
+                Defence::Slip(right) => {
+                    let head = head.as_dvec3();
+                    let side = if right { 1.0 } else { -1.0 };
+                    let to = head + DVec3::new(side * 0.12, -0.04, 0.0);
+                    let part = Part::Head;
+                    out.push(Action::Move {
+                        part,
+                        to,
+                        duration: 0.15,
+                    });
+                }
+            }
+        }
+        out
     }
 
     fn happens(&mut self, rate: f64) -> bool {
@@ -68,11 +185,8 @@ impl SparringBot {
 
     /// Maybe act this tick.
     pub fn step(&mut self, sim: &mut Sim) {
-        let at = sim.time();
-        let mut push = |bot: &mut Self, action: Action| {
-            bot.events += 1;
-            sim.push_event(Event { at, action });
-        };
+        let mut out = self.defend(sim);
+        let push = Vec::push;
         if self.happens(self.rates.punch) {
             let hand = if self.rng.random::<bool>() {
                 Hand::Left
@@ -86,7 +200,7 @@ impl SparringBot {
             };
             let speed = self.rng.random_range(2.5..7.5);
             push(
-                self,
+                &mut out,
                 Action::Punch {
                     hand,
                     target,
@@ -102,13 +216,19 @@ impl SparringBot {
             } else {
                 Part::RightGlove
             };
-            let to = DVec3::new(
-                self.rng.random_range(-0.35..0.35),
-                self.rng.random_range(1.25..1.85),
-                self.rng.random_range(0.45..0.8),
-            );
+            // Half the time back to the guard, else anywhere in front.
+            let to = if self.rng.random::<bool>() {
+                let side = if part == Part::LeftGlove { -1.0 } else { 1.0 };
+                Self::about_head(sim, side, GUARD)
+            } else {
+                DVec3::new(
+                    self.rng.random_range(-0.35..0.35),
+                    self.rng.random_range(1.25..1.85),
+                    self.rng.random_range(0.45..0.8),
+                )
+            };
             let duration = self.rng.random_range(0.2..1.0);
-            push(self, Action::Move { part, to, duration });
+            push(&mut out, Action::Move { part, to, duration });
         }
         if self.happens(self.rates.wave) {
             let part = if self.rng.random::<bool>() {
@@ -124,7 +244,7 @@ impl SparringBot {
             let frequency = self.rng.random_range(1.0..3.0);
             let duration = self.rng.random_range(0.5..2.0);
             push(
-                self,
+                &mut out,
                 Action::Wave {
                     part,
                     amplitude,
@@ -143,7 +263,7 @@ impl SparringBot {
             );
             let duration = self.rng.random_range(0.15..0.5);
             push(
-                self,
+                &mut out,
                 Action::Move {
                     part: Part::Head,
                     to,
@@ -157,7 +277,7 @@ impl SparringBot {
             let speed = [Speed::Fast, Speed::Typical, Speed::Slow][self.rng.random_range(0..3)];
             let intensity = self.rng.random_range(0.3..1.0);
             push(
-                self,
+                &mut out,
                 Action::Emotion {
                     emotion,
                     intensity,
@@ -165,6 +285,11 @@ impl SparringBot {
                     pattern: Pattern::III,
                 },
             );
+        }
+        let at = sim.time();
+        for action in out {
+            self.events += 1;
+            sim.push_event(Event { at, action });
         }
     }
 }
@@ -306,6 +431,8 @@ pub struct SoakSetup {
     /// minutes, a minute's rest), as many as the soak's length holds; the
     /// partner rests too. Otherwise open sparring without a pause.
     pub rounds: bool,
+    /// The random partner's rates and its defence.
+    pub partner: BotRates,
 }
 
 /// Spar for `minutes` of simulated time against a seeded random opponent,
@@ -323,6 +450,7 @@ pub fn soak(
         balanced,
         opponent,
         rounds,
+        partner,
     } = setup;
     let mut loaded = LoadedScene::default_scene();
     loaded.scene.seed = seed;
@@ -344,7 +472,7 @@ pub fn soak(
         }
     });
     let mut sim = loaded.sim();
-    let mut bot = SparringBot::new(seed, BotRates::default());
+    let mut bot = SparringBot::new(seed, partner);
     let ticks = (minutes * 60.0 / DT).round() as u64;
     let mut r = SoakReport::default();
     // Memory is first measured after a warm-up (a minute, or half the run).

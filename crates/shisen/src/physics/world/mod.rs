@@ -741,6 +741,21 @@ impl Scenery for World {
             None => false,
         }
     }
+
+    fn radius(&self, b: BodyId) -> f64 {
+        // The narrowest half extent of the body's colliders' box: a
+        // sphere's radius, a capsule's or a glove's half width.
+        let rb = self.rb(b);
+        rb.colliders()
+            .iter()
+            .map(|&h| {
+                let aabb = self.phys.colliders[h].compute_aabb();
+                let half = aabb.half_extents();
+                half.x.min(half.y).min(half.z)
+            })
+            .fold(0.0f32, f32::max)
+            .into()
+    }
 }
 
 #[cfg(test)]
