@@ -17,9 +17,15 @@ fn short_soak_holds_every_invariant() {
 /// which the partner throws nothing, and the next round.
 #[test]
 fn a_soak_in_rounds_rests_between_them() {
-    use shisen::tools::soak::{SoakSetup, soak};
+    use shisen::tools::soak::{BotRates, SoakSetup, soak};
+    // A partner pressing hard (0.8 punches a second), so punches thrown in
+    // the rest would show.
     let setup = SoakSetup {
         rounds: true,
+        partner: BotRates {
+            punch: 0.8,
+            ..Default::default()
+        },
         ..Default::default()
     };
     // 3 min of round 1, the minute's rest, 20 s of round 2.
@@ -34,32 +40,38 @@ fn a_soak_in_rounds_rests_between_them() {
     assert!((120..190).contains(&thrown), "{thrown} punches");
 }
 
-/// The partner defends as a sparring partner does (a guard, covering up
-/// and slipping after a human reaction time): a pro's punches land less
-/// often on it than on a partner that never defends, and about as often
-/// as elite boxers' do (28-40 %; Davis et al. 2018).
+/// The partner defends as a sparring partner does (covering up and
+/// slipping after a human reaction time, besides the guard it keeps): a
+/// pro's punches land less often on it than on one that only keeps its
+/// guard, and about as often as elite boxers' do (28-40 %; Davis et al.
+/// 2018). Three seeds pooled: one two-minute bout varies by about ten
+/// points.
 #[test]
 fn the_partner_defends_against_the_vh_punches() {
     use shisen::tools::soak::{BotRates, SoakSetup, soak};
     let accuracy = |defend: f64| {
-        let setup = SoakSetup {
-            opponent: Some("pro".parse().expect("a level")),
-            partner: BotRates {
-                defend,
+        let (mut landed, mut thrown) = (0, 0);
+        for seed in 1..=3 {
+            let setup = SoakSetup {
+                opponent: Some("pro".parse().expect("a level")),
+                partner: BotRates {
+                    defend,
+                    ..Default::default()
+                },
                 ..Default::default()
-            },
-            ..Default::default()
-        };
-        let r = soak(2.0, 2, setup, |_| true);
-        assert!(r.passed(), "{:?}", r.failures);
-        let vh = r.card.vh.total();
-        assert!(vh.thrown > 30, "{} punches", vh.thrown);
-        f64::from(vh.landed) / f64::from(vh.thrown)
+            };
+            let r = soak(2.0, seed, setup, |_| true);
+            assert!(r.passed(), "{:?}", r.failures);
+            let vh = r.card.vh.total();
+            (landed, thrown) = (landed + vh.landed, thrown + vh.thrown);
+        }
+        assert!(thrown > 90, "{thrown} punches");
+        f64::from(landed) / f64::from(thrown)
     };
-    let (open, defended) = (accuracy(0.0), accuracy(0.6));
+    let (guarded, defended) = (accuracy(0.0), accuracy(0.6));
     println!(
-        "the pro's accuracy: {open:.2} on a partner that never defends, {defended:.2} on one that does"
+        "the pro's accuracy: {guarded:.2} on a partner that only keeps its guard, {defended:.2} on one that defends"
     );
-    assert!(defended < open - 0.1, "{defended} against {open}");
-    assert!((0.2..0.5).contains(&defended), "{defended}");
+    assert!(defended < guarded - 0.05, "{defended} against {guarded}");
+    assert!((0.2..0.45).contains(&defended), "{defended}");
 }

@@ -260,6 +260,10 @@ pub enum Command {
         /// guard whatever this is.
         #[arg(long, default_value_t = 0.6, value_parser = number_in(0.0, 1.0, ""))]
         partner_defence: f64,
+        /// The random partner's punches a minute, 0-120 (default 22, an
+        /// elite amateur's output; 48 is how hard it once pressed).
+        #[arg(long, default_value_t = 22.0, value_parser = number_in(0.0, 120.0, " a minute"))]
+        partner_punches: f64,
         /// Allow more than 600 simulated minutes.
         #[arg(long)]
         force: bool,

@@ -244,6 +244,7 @@ fn main() -> ExitCode {
             opponent,
             rounds,
             partner_defence,
+            partner_punches,
             force,
         }) => verdict(soak_cmd(
             minutes,
@@ -254,6 +255,7 @@ fn main() -> ExitCode {
                 rounds,
                 partner: shisen::tools::soak::BotRates {
                     defend: partner_defence,
+                    punch: partner_punches / 60.0,
                     ..Default::default()
                 },
             },

@@ -471,11 +471,12 @@ pub fn soak_cmd(
     let per_min = 60.0 / (f64::from(fought) * shisen::sim::DT).max(1e-9);
     let shares = r.card.range_shares();
     println!(
-        "  ring craft{}, the partner defending {:.0} %: the VH threw {:.1} punches a minute, landed {:.1}, took {:.1}; time at clinch/mid/long/out {:.0}/{:.0}/{:.0}/{:.0} %",
+        "  ring craft{}, the partner throwing {:.0} a minute and defending {:.0} %: the VH threw {:.1} punches a minute, landed {:.1}, took {:.1}; time at clinch/mid/long/out {:.0}/{:.0}/{:.0}/{:.0} %",
         setup
             .opponent
             .map(|o| format!(" ({o})"))
             .unwrap_or_default(),
+        60.0 * setup.partner.punch,
         100.0 * setup.partner.defend,
         f64::from(r.card.vh.total().thrown) * per_min,
         f64::from(r.card.vh.total().landed) * per_min,
