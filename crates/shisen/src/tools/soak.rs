@@ -189,7 +189,6 @@ impl SparringBot {
     /// Maybe act this tick.
     pub fn step(&mut self, sim: &mut Sim) {
         let mut out = self.defend(sim);
-        let push = Vec::push;
         if self.happens(self.rates.punch) {
             let hand = if self.rng.random::<bool>() {
                 Hand::Left
@@ -202,16 +201,13 @@ impl SparringBot {
                 PunchTarget::Body
             };
             let speed = self.rng.random_range(2.5..7.5);
-            push(
-                &mut out,
-                Action::Punch {
-                    hand,
-                    target,
-                    speed,
-                    through: None,
-                    glove_only: false,
-                },
-            );
+            out.push(Action::Punch {
+                hand,
+                target,
+                speed,
+                through: None,
+                glove_only: false,
+            });
         }
         if self.happens(self.rates.glove_move) {
             let part = if self.rng.random::<bool>() {
@@ -231,7 +227,7 @@ impl SparringBot {
                 )
             };
             let duration = self.rng.random_range(0.2..1.0);
-            push(&mut out, Action::Move { part, to, duration });
+            out.push(Action::Move { part, to, duration });
         }
         if self.happens(self.rates.wave) {
             let part = if self.rng.random::<bool>() {
@@ -246,15 +242,12 @@ impl SparringBot {
             );
             let frequency = self.rng.random_range(1.0..3.0);
             let duration = self.rng.random_range(0.5..2.0);
-            push(
-                &mut out,
-                Action::Wave {
-                    part,
-                    amplitude,
-                    frequency,
-                    duration,
-                },
-            );
+            out.push(Action::Wave {
+                part,
+                amplitude,
+                frequency,
+                duration,
+            });
         }
         if self.happens(self.rates.dodge) {
             // A dodge, and a step in or out (the bot's feet: it stands
@@ -265,29 +258,23 @@ impl SparringBot {
                 self.rng.random_range(0.8..1.1),
             );
             let duration = self.rng.random_range(0.15..0.5);
-            push(
-                &mut out,
-                Action::Move {
-                    part: Part::Head,
-                    to,
-                    duration,
-                },
-            );
+            out.push(Action::Move {
+                part: Part::Head,
+                to,
+                duration,
+            });
         }
         if self.happens(self.rates.emotion) {
             let all: Vec<Emotion> = Emotion::all().collect();
             let emotion = all[self.rng.random_range(0..all.len())];
             let speed = [Speed::Fast, Speed::Typical, Speed::Slow][self.rng.random_range(0..3)];
             let intensity = self.rng.random_range(0.3..1.0);
-            push(
-                &mut out,
-                Action::Emotion {
-                    emotion,
-                    intensity,
-                    speed,
-                    pattern: Pattern::III,
-                },
-            );
+            out.push(Action::Emotion {
+                emotion,
+                intensity,
+                speed,
+                pattern: Pattern::III,
+            });
         }
         let at = sim.time();
         for action in out {
