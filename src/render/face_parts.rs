@@ -111,17 +111,31 @@ pub(super) fn mouth(sim: &Sim, face: &[Vertex], face_frame: Mat4) -> Vec<Draw> {
     // crowns: a lower lip carried down and back by the jaw lies under the
     // upper teeth, not in front of them.
     let half_w = w * 0.62;
-    let skin_before = |y0: f32, y1: f32, z: f32| {
-        let skin = face
-            .iter()
-            .map(|v| Vec3::from_array(v.pos))
-            .filter(|p| p.x.abs() < half_w && (y0..y1).contains(&p.y))
-            .filter(|p| p.z > rest_lip.z - LIP_REACH)
-            .fold(f32::INFINITY, |z, p| z.min(p.z));
-        (z - (skin - 0.001)).max(0.0)
-    };
-    let push_upper = skin_before(upper_edge.y - 0.001, upper_edge.y + 0.01, upper_edge.z);
-    let push_lower = skin_before(lower_edge.y - 0.01, lower_edge.y + 0.001, lower_edge.z);
+    let (upper_band, lower_band) = (
+        upper_edge.y - 0.001..upper_edge.y + 0.01,
+        lower_edge.y - 0.01..lower_edge.y + 0.001,
+    );
+    // The nearest skin level with each arch's crowns, in one pass.
+    let (upper_skin, lower_skin) = face
+        .iter()
+        .map(|v| Vec3::from_array(v.pos))
+        .filter(|p| p.x.abs() < half_w && p.z > rest_lip.z - LIP_REACH)
+        .fold((f32::INFINITY, f32::INFINITY), |(u, l), p| {
+            (
+                if upper_band.contains(&p.y) {
+                    u.min(p.z)
+                } else {
+                    u
+                },
+                if lower_band.contains(&p.y) {
+                    l.min(p.z)
+                } else {
+                    l
+                },
+            )
+        });
+    let push_upper = (upper_edge.z - (upper_skin - 0.001)).max(0.0);
+    let push_lower = (lower_edge.z - (lower_skin - 0.001)).max(0.0);
     // Light reaches teeth behind the lips only through the opening: the
     // open fraction of their view out of a slit of width `gap` at the
     // lips' depth `d` is about g / (g + 2 d); scaled so a wide-open mouth
