@@ -6,7 +6,8 @@
 //! `cargo run --release` or `shisen` (a trailing `# comment` dropped), and
 //! each `cargo run -p CRATE --example NAME` (run as the example `cargo
 //! test` built). They run in that order, in one scratch folder where
-//! `scenes/`, `docs/` and `crates/` are the repository's, with this
+//! `scenes/`, `docs/` and `crates/` are the repository's (the pages of
+//! `ALONE` beside the rest, in a folder of their own), with this
 //! build's binary in place of `cargo run --release --` and `shisen`; each
 //! must exit 0 (or the code its comment names, `# exit N`) and print no
 //! error. Commands that open the window run under a display only (ignored
@@ -208,13 +209,30 @@ fn the_readme_shows_commands_of_every_kind() {
     assert!(c.iter().any(|l| l.shell.contains("/examples/")));
 }
 
+/// Pages whose commands read nothing another page's write, and write
+/// nothing another page's read: they run in a scratch folder of their
+/// own, beside the others (the fidelity battery's runs are most of this
+/// test's time).
+const ALONE: [&str; 1] = ["docs/fidelity.md"];
+
 #[test]
 fn every_headless_readme_command_runs_as_documented() {
-    let dir = scratch("commands");
-    for line in commands().iter().filter(|l| !l.window) {
-        run(&dir, line, "");
+    let (alone, chained): (Vec<Line>, Vec<Line>) = commands()
+        .into_iter()
+        .filter(|l| !l.window)
+        .partition(|l| ALONE.contains(&l.page.as_str()));
+    assert!(!alone.is_empty(), "no command on the pages of ALONE");
+    let (dir, alone_dir) = (scratch("commands"), scratch("commands-alone"));
+    std::thread::scope(|s| {
+        let beside = s.spawn(|| alone.iter().for_each(|line| run(&alone_dir, line, "")));
+        chained.iter().for_each(|line| run(&dir, line, ""));
+        if let Err(failed) = beside.join() {
+            std::panic::resume_unwind(failed);
+        }
+    });
+    for d in [dir, alone_dir] {
+        let _ = std::fs::remove_dir_all(d);
     }
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// The example scenes of the README and the manual (`ron` blocks that are
