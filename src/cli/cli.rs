@@ -258,11 +258,11 @@ pub enum Command {
         /// (covering up or slipping, after a human reaction time), 0-1;
         /// 0: it never defends. Half its idle glove moves go back to its
         /// guard whatever this is.
-        #[arg(long, default_value_t = 0.6, value_parser = number_in(0.0, 1.0, ""))]
+        #[arg(long, default_value_t = shisen::tools::soak::PARTNER_DEFENCE, value_parser = number_in(0.0, 1.0, ""))]
         partner_defence: f64,
-        /// The random partner's punches a minute, 0-120 (default 22, an
+        /// The random partner's punches a minute, 0-120 (by default an
         /// elite amateur's output; 48 is how hard it once pressed).
-        #[arg(long, default_value_t = 22.0, value_parser = number_in(0.0, 120.0, " a minute"))]
+        #[arg(long, default_value_t = shisen::tools::soak::PARTNER_PUNCHES_PER_MIN, value_parser = number_in(0.0, 120.0, " a minute"))]
         partner_punches: f64,
         /// Allow more than 600 simulated minutes.
         #[arg(long)]

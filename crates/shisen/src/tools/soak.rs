@@ -17,13 +17,21 @@ use crate::sim::{DT, Sample, Sim};
 use shisen_face::tables::Emotion;
 use shisen_face::timing::{Pattern, Speed};
 
+/// The sparring partner's punches a minute by default: an elite
+/// amateur's output (about 20-26 a minute: Davis et al. 2018, J. Strength
+/// Cond. Res.; the 2012 Olympics about 20); the partner once threw 48,
+/// twice that.
+pub const PARTNER_PUNCHES_PER_MIN: f64 = 22.0;
+
+/// The share of the VH's punches, seen coming, that the sparring partner
+/// defends against by default (our choice: with its guard, a pro's
+/// punches then land 30-40 %, elite boxers' accuracy, Davis et al. 2018).
+pub const PARTNER_DEFENCE: f64 = 0.6;
+
 /// The random opponent's event rates, per second.
 #[derive(Clone, Copy, Debug)]
 pub struct BotRates {
-    /// Punches. Default 22 a minute, an elite amateur's output (about
-    /// 20-26 punches a minute: Davis et al. 2018, J. Strength Cond. Res.;
-    /// the 2012 Olympics about 20); the partner once threw 0.8 a second,
-    /// twice that.
+    /// Punches (default [`PARTNER_PUNCHES_PER_MIN`] a minute).
     pub punch: f64,
     /// Glove repositioning moves.
     pub glove_move: f64,
@@ -35,21 +43,20 @@ pub struct BotRates {
     pub emotion: f64,
     /// Share of the VH's punches, seen coming, that the partner defends
     /// against, 0-1 ([`SparringBot`]'s defence; 0: it never defends, as
-    /// the partner did before it had a guard). Default 0.6 (our choice:
-    /// with its guard, a pro's punches then land 30-40 %, elite boxers'
-    /// accuracy, Davis et al. 2018).
+    /// the partner did before it had a guard). Default
+    /// [`PARTNER_DEFENCE`].
     pub defend: f64,
 }
 
 impl Default for BotRates {
     fn default() -> Self {
         BotRates {
-            punch: 22.0 / 60.0,
+            punch: PARTNER_PUNCHES_PER_MIN / 60.0,
             glove_move: 0.6,
             wave: 0.1,
             dodge: 0.3,
             emotion: 0.1,
-            defend: 0.6,
+            defend: PARTNER_DEFENCE,
         }
     }
 }
